@@ -1,0 +1,1 @@
+//! GP0/GP1 command-stream text format (docs/formats.md).

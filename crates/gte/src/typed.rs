@@ -1,0 +1,1 @@
+//! Typed fixed-point API over the register-level engine.

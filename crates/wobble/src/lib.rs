@@ -1,0 +1,1 @@
+//! The wobble pipeline and tools.
