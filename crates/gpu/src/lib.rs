@@ -5,6 +5,10 @@ extern crate alloc;
 
 pub mod command_stream;
 pub mod ordering_table;
+pub mod primitive;
+pub mod rasterizer;
+pub mod state;
+pub mod texture;
 
 use alloc::boxed::Box;
 use alloc::vec;

@@ -5,7 +5,10 @@
 //! vertices the PS1 way.
 #![cfg_attr(not(feature = "std"), no_std)]
 
+pub mod flag;
 pub mod typed;
+
+pub use flag::Flag;
 
 /// The GTE register file and command engine.
 #[derive(Clone, Debug, Default)]

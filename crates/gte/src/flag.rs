@@ -1,0 +1,104 @@
+//! The FLAG register (control register 31): saturation and overflow bits set by the last
+//! command (gte.md §3).
+
+/// A set of FLAG bits. Bits 0-11 are always zero; bit 31 is the OR of bits 30-23 and 18-13.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Flag(u32);
+
+impl Flag {
+    /// No bit set.
+    pub const EMPTY: Flag = Flag(0);
+    /// Bit 31: error summary, OR of bits 30-23 and 18-13.
+    pub const ERROR: Flag = Flag(1 << 31);
+    /// Bit 30: MAC1 above 2^43 - 1.
+    pub const MAC1_POSITIVE_OVERFLOW: Flag = Flag(1 << 30);
+    /// Bit 29: MAC2 above 2^43 - 1.
+    pub const MAC2_POSITIVE_OVERFLOW: Flag = Flag(1 << 29);
+    /// Bit 28: MAC3 above 2^43 - 1.
+    pub const MAC3_POSITIVE_OVERFLOW: Flag = Flag(1 << 28);
+    /// Bit 27: MAC1 below -2^43.
+    pub const MAC1_NEGATIVE_OVERFLOW: Flag = Flag(1 << 27);
+    /// Bit 26: MAC2 below -2^43.
+    pub const MAC2_NEGATIVE_OVERFLOW: Flag = Flag(1 << 26);
+    /// Bit 25: MAC3 below -2^43.
+    pub const MAC3_NEGATIVE_OVERFLOW: Flag = Flag(1 << 25);
+    /// Bit 24: IR1 saturated.
+    pub const IR1_SATURATED: Flag = Flag(1 << 24);
+    /// Bit 23: IR2 saturated.
+    pub const IR2_SATURATED: Flag = Flag(1 << 23);
+    /// Bit 22: IR3 saturated.
+    pub const IR3_SATURATED: Flag = Flag(1 << 22);
+    /// Bit 21: colour FIFO R saturated to 0..FFh.
+    pub const COLOR_R_SATURATED: Flag = Flag(1 << 21);
+    /// Bit 20: colour FIFO G saturated.
+    pub const COLOR_G_SATURATED: Flag = Flag(1 << 20);
+    /// Bit 19: colour FIFO B saturated.
+    pub const COLOR_B_SATURATED: Flag = Flag(1 << 19);
+    /// Bit 18: SZ3 or OTZ saturated to 0..FFFFh.
+    pub const SZ3_OTZ_SATURATED: Flag = Flag(1 << 18);
+    /// Bit 17: UNR divide overflow (H >= 2*SZ3).
+    pub const DIVIDE_OVERFLOW: Flag = Flag(1 << 17);
+    /// Bit 16: MAC0 above 2^31 - 1.
+    pub const MAC0_POSITIVE_OVERFLOW: Flag = Flag(1 << 16);
+    /// Bit 15: MAC0 below -2^31.
+    pub const MAC0_NEGATIVE_OVERFLOW: Flag = Flag(1 << 15);
+    /// Bit 14: SX2 saturated to -400h..3FFh.
+    pub const SX2_SATURATED: Flag = Flag(1 << 14);
+    /// Bit 13: SY2 saturated to -400h..3FFh.
+    pub const SY2_SATURATED: Flag = Flag(1 << 13);
+    /// Bit 12: IR0 saturated to 0..1000h.
+    pub const IR0_SATURATED: Flag = Flag(1 << 12);
+
+    /// Bits that feed the error summary, bit 31 (gte.md §3).
+    pub const ERROR_SOURCES: u32 = 0x7F87_E000;
+    /// Bits a CTC2 write to FLAG keeps (gte.md §2).
+    pub const WRITABLE: u32 = 0x7FFF_F000;
+
+    /// The flag set as FLAG reads it, from raw bits; bits 0-11 are dropped and bit 31
+    /// recomputed from the error sources, as a CTC2 write does.
+    pub const fn from_bits(bits: u32) -> Flag {
+        let kept = bits & Self::WRITABLE;
+        if kept & Self::ERROR_SOURCES != 0 {
+            Flag(kept | Self::ERROR.0)
+        } else {
+            Flag(kept)
+        }
+    }
+
+    /// The raw register value.
+    pub const fn bits(self) -> u32 {
+        self.0
+    }
+
+    /// Whether every bit of `other` is set in `self`.
+    pub const fn contains(self, other: Flag) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// Whether any bit of `other` is set in `self`.
+    pub const fn intersects(self, other: Flag) -> bool {
+        self.0 & other.0 != 0
+    }
+
+    /// The union of two sets, with bit 31 recomputed.
+    pub const fn union(self, other: Flag) -> Flag {
+        Flag::from_bits(self.0 | other.0)
+    }
+
+    /// Whether the error summary (bit 31) is set.
+    pub const fn is_error(self) -> bool {
+        self.0 & Self::ERROR.0 != 0
+    }
+
+    /// Whether no bit is set.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+}
+
+impl core::ops::BitOr for Flag {
+    type Output = Flag;
+    fn bitor(self, rhs: Flag) -> Flag {
+        self.union(rhs)
+    }
+}
