@@ -1,0 +1,116 @@
+//! Matrix-vector commands: MVMVA (with the FC and mx=3 hardware bugs), SQR and OP
+//! (gte.md §8).
+
+use crate::Gte;
+use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
+use crate::registers::Matrix;
+
+/// Widen a stored matrix for the multiply.
+pub(crate) fn widen(m: &Matrix) -> [[i64; 3]; 3] {
+    m.map(|row| row.map(i64::from))
+}
+
+impl Gte {
+    /// MACn/IRn for n = 1..3 from `t << 12 + m * v` (gte.md §4).
+    #[inline(always)]
+    pub(crate) fn multiply_add(
+        &mut self,
+        m: &[[i64; 3]; 3],
+        v: [i64; 3],
+        t: [i64; 3],
+        shift: u32,
+        lm: bool,
+    ) {
+        for row in 0..3 {
+            let r = m[row];
+            let sum = self.accumulate(
+                row + 1,
+                t[row] << 12,
+                &[r[0] * v[0], r[1] * v[1], r[2] * v[2]],
+            );
+            self.set_mac_ir(row + 1, sum, shift, lm);
+        }
+    }
+
+    /// IR1-3 widened.
+    pub(crate) fn ir_vector(&self) -> [i64; 3] {
+        [
+            self.regs.ir[1] as i64,
+            self.regs.ir[2] as i64,
+            self.regs.ir[3] as i64,
+        ]
+    }
+
+    /// MVMVA: MAC/IR = cv + mx * v with the selected operands (gte.md §8).
+    pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
+        let m = match c.mx() {
+            MatrixSel::Rotation => widen(&self.regs.rt),
+            MatrixSel::Light => widen(&self.regs.llm),
+            MatrixSel::LightColor => widen(&self.regs.lcm),
+            MatrixSel::Garbage => {
+                // Rows [-(R<<4), R<<4, IR0], [RT13]x3, [RT22]x3 (gte.md §8).
+                let r = ((self.regs.rgbc & 0xFF) as i64) << 4;
+                let rt13 = self.regs.rt[0][2] as i64;
+                let rt22 = self.regs.rt[1][1] as i64;
+                [[-r, r, self.regs.ir[0] as i64], [rt13; 3], [rt22; 3]]
+            }
+        };
+        let v = match c.v() {
+            VectorSel::V0 => self.regs.v[0].map(i64::from),
+            VectorSel::V1 => self.regs.v[1].map(i64::from),
+            VectorSel::V2 => self.regs.v[2].map(i64::from),
+            VectorSel::Ir => self.ir_vector(),
+        };
+        let t = match c.cv() {
+            TranslationSel::Translation => self.regs.tr.map(i64::from),
+            TranslationSel::Background => self.regs.bk.map(i64::from),
+            TranslationSel::FarColor => {
+                self.mvmva_far_color_bug(&m, v, shift, lm);
+                return;
+            }
+            TranslationSel::None => [0; 3],
+        };
+        self.multiply_add(&m, v, t, shift, lm);
+    }
+
+    /// cv=2: per row, FC<<12 + M_n1*V1 is formed and flagged (44-bit and an IR check with the
+    /// lm=0 range) and discarded; the result is (M_n2*V2 + M_n3*V3) SAR sf (gte.md §8).
+    fn mvmva_far_color_bug(&mut self, m: &[[i64; 3]; 3], v: [i64; 3], shift: u32, lm: bool) {
+        let fc = self.regs.fc;
+        for row in 0..3 {
+            let r = m[row];
+            let discarded = self.accumulate(row + 1, (fc[row] as i64) << 12, &[r[0] * v[0]]);
+            self.saturate_ir(row + 1, (discarded >> shift) as i32, false);
+            let sum = self.accumulate(row + 1, 0, &[r[1] * v[1], r[2] * v[2]]);
+            self.set_mac_ir(row + 1, sum, shift, lm);
+        }
+    }
+
+    /// SQR: MACn = IRn^2 SAR sf, IRn by lm (gte.md §8).
+    pub(crate) fn sqr(&mut self, shift: u32, lm: bool) {
+        let ir = self.ir_vector();
+        for (n, v) in ir.into_iter().enumerate() {
+            let sum = self.accumulate(n + 1, 0, &[v * v]);
+            self.set_mac_ir(n + 1, sum, shift, lm);
+        }
+    }
+
+    /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (gte.md §8).
+    pub(crate) fn op(&mut self, shift: u32, lm: bool) {
+        let d = [
+            self.regs.rt[0][0] as i64,
+            self.regs.rt[1][1] as i64,
+            self.regs.rt[2][2] as i64,
+        ];
+        let ir = self.ir_vector();
+        let terms = [
+            (ir[2] * d[1], ir[1] * d[2]),
+            (ir[0] * d[2], ir[2] * d[0]),
+            (ir[1] * d[0], ir[0] * d[1]),
+        ];
+        for (n, (a, b)) in terms.into_iter().enumerate() {
+            let sum = self.accumulate(n + 1, 0, &[a, -b]);
+            self.set_mac_ir(n + 1, sum, shift, lm);
+        }
+    }
+}

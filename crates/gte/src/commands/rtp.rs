@@ -1,0 +1,89 @@
+//! RTPS/RTPT: rotate, translate and perspective-project vertices (gte.md §5).
+
+use crate::Gte;
+use crate::mac::{bit, clamp};
+use crate::unr;
+
+impl Gte {
+    /// RTPS: project V0; depth cue from it.
+    pub(crate) fn rtps(&mut self, shift: u32, lm: bool) {
+        self.project_vertex(0, shift, lm, true);
+    }
+
+    /// RTPT: project V0, V1, V2 in order; depth cue from the last only.
+    pub(crate) fn rtpt(&mut self, shift: u32, lm: bool) {
+        self.project_vertex(0, shift, lm, false);
+        self.project_vertex(1, shift, lm, false);
+        self.project_vertex(2, shift, lm, true);
+    }
+
+    /// One vertex of RTPS/RTPT (gte.md §5 steps 1-7).
+    #[inline(always)]
+    fn project_vertex(&mut self, index: usize, shift: u32, lm: bool, depth_cue: bool) {
+        let v = self.regs.v[index];
+        let rt = self.regs.rt;
+        let tr = self.regs.tr;
+        let mut acc = [0i64; 3];
+        for (row, acc) in acc.iter_mut().enumerate() {
+            let m = rt[row];
+            *acc = self.accumulate(
+                row + 1,
+                (tr[row] as i64) << 12,
+                &[
+                    m[0] as i64 * v[0] as i64,
+                    m[1] as i64 * v[1] as i64,
+                    m[2] as i64 * v[2] as i64,
+                ],
+            );
+        }
+        let mac1 = self.set_mac(1, acc[0], shift);
+        let mac2 = self.set_mac(2, acc[1], shift);
+        let mac3 = self.set_mac(3, acc[2], shift);
+        self.set_ir(1, mac1, lm);
+        self.set_ir(2, mac2, lm);
+        // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
+        let ir3_min = if lm { 0 } else { -0x8000 };
+        self.regs.ir[3] = clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16;
+        let z = acc[2] >> 12;
+        if clamp(z, -0x8000, 0x7FFF).1 {
+            self.flag_bits |= bit::ir(3);
+        }
+        // SZ3 from the 44-bit accumulator, independent of sf (step 4).
+        let (sz3, saturated) = clamp(z, 0, 0xFFFF);
+        if saturated {
+            self.flag_bits |= bit::SZ3_OTZ;
+        }
+        self.regs.push_sz(sz3 as u16);
+        // Divide (step 5).
+        let (q, overflow) = unr::divide(self.divide_mode, self.regs.h, sz3 as u16);
+        if overflow {
+            self.flag_bits |= bit::DIVIDE;
+        }
+        let q = q as i64;
+        // Screen position from the untruncated 64-bit value (step 6).
+        let x = q * self.regs.ir[1] as i64 + self.regs.ofx as i64;
+        let y = q * self.regs.ir[2] as i64 + self.regs.ofy as i64;
+        self.flag_mac0(x);
+        self.flag_mac0(y);
+        let (sx, sx_sat) = clamp(x >> 16, -0x400, 0x3FF);
+        let (sy, sy_sat) = clamp(y >> 16, -0x400, 0x3FF);
+        if sx_sat {
+            self.flag_bits |= bit::SX2;
+        }
+        if sy_sat {
+            self.flag_bits |= bit::SY2;
+        }
+        self.regs
+            .push_sxy((sx as i16 as u16 as u32) | ((sy as i16 as u16 as u32) << 16));
+        if depth_cue {
+            // Depth cue (step 7).
+            let d = q * self.regs.dqa as i64 + self.regs.dqb as i64;
+            self.set_mac0(d);
+            let (ir0, saturated) = clamp(d >> 12, 0, 0x1000);
+            if saturated {
+                self.flag_bits |= bit::IR0;
+            }
+            self.regs.ir[0] = ir0 as i16;
+        }
+    }
+}

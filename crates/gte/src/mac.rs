@@ -1,0 +1,157 @@
+//! The arithmetic every command shares: 44-bit MAC1-3 accumulation with per-step overflow
+//! flags and wrap, MAC0 flags, and the IR / colour saturation (gte.md §4).
+
+use crate::Gte;
+
+/// Largest 44-bit accumulator value, 2^43 - 1.
+pub const MAC_MAX: i64 = (1 << 43) - 1;
+/// Smallest 44-bit accumulator value, -2^43.
+pub const MAC_MIN: i64 = -(1 << 43);
+
+/// Wrap to 44-bit two's complement.
+pub const fn wrap44(value: i64) -> i64 {
+    (value << 20) >> 20
+}
+
+/// Saturate to `min..=max`, reporting whether the value was out of range.
+pub const fn clamp(value: i64, min: i64, max: i64) -> (i64, bool) {
+    if value < min {
+        (min, true)
+    } else if value > max {
+        (max, true)
+    } else {
+        (value, false)
+    }
+}
+
+/// Bits of the FLAG register, by position (gte.md §3).
+pub mod bit {
+    /// MACn > 2^43 - 1: bit 31 - n.
+    pub const fn mac_positive(n: usize) -> u32 {
+        1 << (31 - n)
+    }
+    /// MACn < -2^43: bit 28 - n.
+    pub const fn mac_negative(n: usize) -> u32 {
+        1 << (28 - n)
+    }
+    /// IRn saturated: bit 25 - n.
+    pub const fn ir(n: usize) -> u32 {
+        1 << (25 - n)
+    }
+    /// Colour channel n (1 = R) saturated: bit 22 - n.
+    pub const fn color(n: usize) -> u32 {
+        1 << (22 - n)
+    }
+    /// SZ3 / OTZ saturated.
+    pub const SZ3_OTZ: u32 = 1 << 18;
+    /// Divide overflow.
+    pub const DIVIDE: u32 = 1 << 17;
+    /// MAC0 > 2^31 - 1.
+    pub const MAC0_POSITIVE: u32 = 1 << 16;
+    /// MAC0 < -2^31.
+    pub const MAC0_NEGATIVE: u32 = 1 << 15;
+    /// SX2 saturated.
+    pub const SX2: u32 = 1 << 14;
+    /// SY2 saturated.
+    pub const SY2: u32 = 1 << 13;
+    /// IR0 saturated.
+    pub const IR0: u32 = 1 << 12;
+}
+
+impl Gte {
+    /// Accumulate into MACn (n = 1..3): start from `start` (an add-vector component already
+    /// shifted left 12, or 0), add each product in turn, flag and wrap to 44 bits after every
+    /// addition (gte.md §4). Returns the wrapped 44-bit sum.
+    #[inline(always)]
+    pub(crate) fn accumulate(&mut self, n: usize, start: i64, products: &[i64]) -> i64 {
+        let mut sum = start;
+        for &p in products {
+            sum += p;
+            if sum > MAC_MAX {
+                self.flag_bits |= bit::mac_positive(n);
+            } else if sum < MAC_MIN {
+                self.flag_bits |= bit::mac_negative(n);
+            }
+            sum = wrap44(sum);
+        }
+        sum
+    }
+
+    /// MACn = low 32 bits of (sum SAR shift) (gte.md §4).
+    #[inline(always)]
+    pub(crate) fn set_mac(&mut self, n: usize, sum: i64, shift: u32) -> i32 {
+        let mac = (sum >> shift) as i32;
+        self.regs.mac[n] = mac;
+        mac
+    }
+
+    /// Saturate a MAC value to IRn's range (0 or -8000h up to 7FFFh), setting FLAG bit 25-n,
+    /// without storing it.
+    #[inline(always)]
+    pub(crate) fn saturate_ir(&mut self, n: usize, value: i32, lm: bool) -> i16 {
+        let min = if lm { 0 } else { -0x8000 };
+        let (v, saturated) = clamp(value as i64, min, 0x7FFF);
+        if saturated {
+            self.flag_bits |= bit::ir(n);
+        }
+        v as i16
+    }
+
+    /// IRn = clamp(value) with FLAG bit 25-n (gte.md §4).
+    #[inline(always)]
+    pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) {
+        let v = self.saturate_ir(n, value, lm);
+        self.regs.ir[n] = v;
+    }
+
+    /// The common tail of a matrix-vector row: MACn from the sum, IRn from MACn.
+    #[inline(always)]
+    pub(crate) fn set_mac_ir(&mut self, n: usize, sum: i64, shift: u32, lm: bool) {
+        let mac = self.set_mac(n, sum, shift);
+        self.set_ir(n, mac, lm);
+    }
+
+    /// MAC0 from a 64-bit value: flags 16/15 on the full value, low 32 bits kept (gte.md §4).
+    #[inline(always)]
+    pub(crate) fn set_mac0(&mut self, value: i64) {
+        self.flag_mac0(value);
+        self.regs.mac[0] = value as i32;
+    }
+
+    /// FLAG bits 16/15 for a MAC0-path value.
+    #[inline(always)]
+    pub(crate) fn flag_mac0(&mut self, value: i64) {
+        if value > i32::MAX as i64 {
+            self.flag_bits |= bit::MAC0_POSITIVE;
+        } else if value < i32::MIN as i64 {
+            self.flag_bits |= bit::MAC0_NEGATIVE;
+        }
+    }
+
+    /// Colour FIFO push: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n; RGB2 gets
+    /// R | G << 8 | B << 16 | CODE << 24 (gte.md §4).
+    #[inline(always)]
+    pub(crate) fn push_color(&mut self) {
+        let mut packed = self.regs.rgbc & 0xFF00_0000;
+        for n in 1..=3 {
+            let (c, saturated) = clamp((self.regs.mac[n] >> 4) as i64, 0, 0xFF);
+            if saturated {
+                self.flag_bits |= bit::color(n);
+            }
+            packed |= (c as u32) << (8 * (n - 1));
+        }
+        self.regs.push_rgb(packed);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap44_examples() {
+        assert_eq!(wrap44(MAC_MAX + 1), MAC_MIN);
+        assert_eq!(wrap44(MAC_MIN - 1), MAC_MAX);
+        assert_eq!(wrap44(-5), -5);
+    }
+}

@@ -1,0 +1,133 @@
+//! The UNR divide of RTPS/RTPT: H / SZ3 by a 257-entry reciprocal table and Newton-Raphson
+//! refinement, with the hardware's overflow rule (gte.md §6).
+
+/// Overflow result and the largest quotient: 1FFFFh (gte.md §6).
+pub const QUOTIENT_MAX: u32 = 0x1_FFFF;
+
+/// The reciprocal seed table T[0..=256] (gte.md §6):
+/// `T[i] = max(0, ((40000h div (i + 100h)) + 1) div 2 - 101h)`, built at compile time.
+pub const UNR_TABLE: [u8; 257] = build_table();
+
+const fn build_table() -> [u8; 257] {
+    let mut table = [0u8; 257];
+    let mut i = 0;
+    while i < 257 {
+        let v = ((0x40000 / (i as i32 + 0x100)) + 1) / 2 - 0x101;
+        table[i] = if v < 0 { 0 } else { v as u8 };
+        i += 1;
+    }
+    table
+}
+
+/// How RTPS/RTPT divide H by SZ3. Only [`DivideMode::Unr`] is hardware behaviour; the others
+/// are accuracy knobs for measuring what the UNR approximation costs (docs/gte.md).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DivideMode {
+    /// The console's table + Newton-Raphson divide (gte.md §6).
+    #[default]
+    Unr,
+    /// `round(H * 10000h / SZ3)` in integers, same overflow rule and 1FFFFh clamp.
+    Exact,
+    /// The same quotient computed in `f32`, same overflow rule and clamp.
+    F32,
+}
+
+/// Whether `H / SZ3` overflows: the hardware computes a quotient only when `H < 2 * SZ3`
+/// (gte.md §6); this covers SZ3 = 0.
+pub const fn divide_overflows(h: u16, sz3: u16) -> bool {
+    (h as u32) >= 2 * (sz3 as u32)
+}
+
+/// The hardware UNR quotient `H * 10000h / SZ3` (gte.md §6). Returns the quotient
+/// (0..=1FFFFh) and whether the divide overflowed (FLAG.17). The final clamp to 1FFFFh sets
+/// no flag.
+pub const fn unr_divide(h: u16, sz3: u16) -> (u32, bool) {
+    if divide_overflows(h, sz3) {
+        return (QUOTIENT_MAX, true);
+    }
+    // sz3 > h / 2 >= 0, so sz3 != 0 and the shift count is 0..=15.
+    let shift = sz3.leading_zeros();
+    let n = (h as u64) << shift;
+    let d = (sz3 as i64) << shift; // 8000h..=FFFFh
+    let index = ((d - 0x7FC0) >> 7) as usize; // 0..=256
+    let u = UNR_TABLE[index] as i64 + 0x101;
+    let d = (0x200_0080 - d * u) >> 8;
+    let d = (0x80 + d * u) >> 8;
+    let q = (n as i64 * d + 0x8000) >> 16;
+    let q = if q > QUOTIENT_MAX as i64 {
+        QUOTIENT_MAX
+    } else {
+        q as u32
+    };
+    (q, false)
+}
+
+/// `round(H * 10000h / SZ3)` with the hardware overflow rule and clamp: the exact quotient the
+/// UNR divide approximates.
+pub const fn exact_divide(h: u16, sz3: u16) -> (u32, bool) {
+    if divide_overflows(h, sz3) {
+        return (QUOTIENT_MAX, true);
+    }
+    let sz3 = sz3 as u64;
+    let q = (((h as u64) << 16) + sz3 / 2) / sz3;
+    let q = if q > QUOTIENT_MAX as u64 {
+        QUOTIENT_MAX
+    } else {
+        q as u32
+    };
+    (q, false)
+}
+
+/// The quotient in `f32` maths (rounded to nearest), with the hardware overflow rule and clamp.
+pub fn f32_divide(h: u16, sz3: u16) -> (u32, bool) {
+    if divide_overflows(h, sz3) {
+        return (QUOTIENT_MAX, true);
+    }
+    let q = (h as f32) * 65536.0 / (sz3 as f32) + 0.5;
+    // `as` saturates; q is positive and finite because sz3 > 0.
+    let q = (q as u32).min(QUOTIENT_MAX);
+    (q, false)
+}
+
+/// Divide with the selected mode.
+pub fn divide(mode: DivideMode, h: u16, sz3: u16) -> (u32, bool) {
+    match mode {
+        DivideMode::Unr => unr_divide(h, sz3),
+        DivideMode::Exact => exact_divide(h, sz3),
+        DivideMode::F32 => f32_divide(h, sz3),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_matches_printed_endpoints() {
+        // psx-spx prints the table starting FFh,FDh,FBh,F9h and ending ...,01h,00h,00h.
+        assert_eq!(&UNR_TABLE[..4], &[0xFF, 0xFD, 0xFB, 0xF9]);
+        assert_eq!(UNR_TABLE[255], 0x00);
+        assert_eq!(UNR_TABLE[256], 0x00);
+    }
+
+    #[test]
+    fn overflow_rule() {
+        assert_eq!(unr_divide(0, 0), (QUOTIENT_MAX, true));
+        assert_eq!(unr_divide(100, 50), (QUOTIENT_MAX, true));
+        assert!(!unr_divide(100, 51).1);
+    }
+
+    #[test]
+    fn final_clamp_cases_from_fact_sheet() {
+        // gte.md §6: FE3Fh/7F20h and F015h/780Bh reach 20000h before the clamp.
+        assert_eq!(unr_divide(0xFE3F, 0x7F20), (QUOTIENT_MAX, false));
+        assert_eq!(unr_divide(0xF015, 0x780B), (QUOTIENT_MAX, false));
+    }
+
+    #[test]
+    fn powers_of_two_are_exact() {
+        // H = SZ3: the quotient is 1.0 = 10000h.
+        assert_eq!(unr_divide(0x4000, 0x4000), (0x10000, false));
+        assert_eq!(unr_divide(1, 1), (0x10000, false));
+    }
+}
