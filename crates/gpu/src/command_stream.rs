@@ -1,1 +1,130 @@
-//! GP0/GP1 command-stream text format (docs/formats.md).
+//! The GP0/GP1 command-stream text format (docs/formats.md): one command a line,
+//! `gp0 XXXXXXXX [XXXXXXXX ...]` (words sent to GP0 in order) or `gp1 XXXXXXXX`; `#` starts a
+//! comment; blank lines are ignored.
+
+use alloc::string::{String, ToString};
+use alloc::vec::Vec;
+use core::fmt;
+
+use crate::Gpu;
+
+/// The port a stream line writes to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Port {
+    /// GP0: rendering and VRAM transfers.
+    Gp0,
+    /// GP1: display control.
+    Gp1,
+}
+
+/// One line of a stream: its 1-based line number, port and words.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StreamCommand {
+    /// Line number in the source text (1-based).
+    pub line: usize,
+    /// Destination port.
+    pub port: Port,
+    /// Words in order (exactly one for GP1).
+    pub words: Vec<u32>,
+}
+
+/// A malformed stream line.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StreamError {
+    /// Line number (1-based).
+    pub line: usize,
+    /// What is wrong with it.
+    pub message: String,
+}
+
+impl fmt::Display for StreamError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.message)
+    }
+}
+
+impl core::error::Error for StreamError {}
+
+/// Parse a whole stream; the first malformed line is reported with its number.
+pub fn parse(text: &str) -> Result<Vec<StreamCommand>, StreamError> {
+    let mut commands = Vec::new();
+    for (index, raw) in text.lines().enumerate() {
+        let line = index + 1;
+        let content = raw.split('#').next().unwrap_or("");
+        let mut fields = content.split_whitespace();
+        let Some(port) = fields.next() else {
+            continue;
+        };
+        let err = |message: String| StreamError { line, message };
+        let port = match port.to_ascii_lowercase().as_str() {
+            "gp0" => Port::Gp0,
+            "gp1" => Port::Gp1,
+            other => {
+                return Err(err(alloc::format!(
+                    "unknown port `{other}` (expected gp0 or gp1)"
+                )));
+            }
+        };
+        let mut words = Vec::new();
+        for field in fields {
+            let digits = field
+                .strip_prefix("0x")
+                .or_else(|| field.strip_prefix("0X"))
+                .unwrap_or(field);
+            if digits.is_empty() || digits.len() > 8 {
+                return Err(err(alloc::format!(
+                    "`{field}` is not a 32-bit hex word (1 to 8 hex digits)"
+                )));
+            }
+            let word = u32::from_str_radix(digits, 16)
+                .map_err(|_| err(alloc::format!("`{field}` is not a hex word")))?;
+            words.push(word);
+        }
+        match (port, words.len()) {
+            (_, 0) => return Err(err("missing word after the port".to_string())),
+            (Port::Gp1, n) if n > 1 => {
+                return Err(err(alloc::format!("gp1 takes exactly one word, got {n}")));
+            }
+            _ => {}
+        }
+        commands.push(StreamCommand { line, port, words });
+    }
+    Ok(commands)
+}
+
+/// Send parsed commands to a GPU in order.
+pub fn run(gpu: &mut Gpu, commands: &[StreamCommand]) {
+    for c in commands {
+        match c.port {
+            Port::Gp0 => gpu.gp0_words(&c.words),
+            Port::Gp1 => {
+                for &w in &c.words {
+                    gpu.gp1(w);
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_ports_words_comments() {
+        let cmds = parse("# header\n\ngp1 00000000\ngp0 e1000400 0x02ffffff # trailing\n").unwrap();
+        assert_eq!(cmds.len(), 2);
+        assert_eq!(cmds[0].line, 3);
+        assert_eq!(cmds[0].port, Port::Gp1);
+        assert_eq!(cmds[1].words, [0xE100_0400, 0x02FF_FFFF]);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        assert_eq!(parse("gp0 1\ngp2 0").unwrap_err().line, 2);
+        assert_eq!(parse("gp0 xyz").unwrap_err().line, 1);
+        assert_eq!(parse("gp0").unwrap_err().line, 1);
+        assert_eq!(parse("gp0 1\n\ngp1 1 2").unwrap_err().line, 3);
+        assert_eq!(parse("gp0 123456789").unwrap_err().line, 1);
+    }
+}

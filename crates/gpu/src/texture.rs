@@ -1,11 +1,109 @@
 //! Texture sampling: texture window, 4/8/15-bit texel fetch, CLUT lookup and the CLUT cache
 //! (gpu.md §7).
 
-/// The latched CLUT (gpu.md §7, "CLUT cache").
-#[derive(Clone, Debug, Default)]
-pub struct ClutCache {}
+use crate::VRAM_WIDTH;
+use crate::primitive::Texture;
+use crate::state::{TextureDepth, TextureWindow};
+
+/// The latched CLUT (gpu.md §7, "CLUT cache"): entries are loaded from VRAM when a 4/8-bit
+/// primitive is drawn with a CLUT position other than the cached one, or needs 8-bit entries
+/// when only 4-bit ones are cached; GP0(01h) invalidates it. Overwriting the CLUT in VRAM does
+/// not refresh it.
+#[derive(Clone, Debug)]
+pub struct ClutCache {
+    entries: [u16; 256],
+    key: Option<(u16, u16)>,
+    loaded_8bit: bool,
+}
+
+impl Default for ClutCache {
+    fn default() -> Self {
+        Self {
+            entries: [0; 256],
+            key: None,
+            loaded_8bit: false,
+        }
+    }
+}
 
 impl ClutCache {
     /// GP0(01h): forget the latched CLUT so the next 4/8-bit primitive reloads it.
-    pub fn invalidate(&mut self) {}
+    pub fn invalidate(&mut self) {
+        self.key = None;
+        self.loaded_8bit = false;
+    }
+
+    /// The latched entries.
+    pub fn entries(&self) -> &[u16; 256] {
+        &self.entries
+    }
+
+    /// Make sure the entries a primitive with `texture` needs are latched; returns them.
+    pub fn latch(&mut self, vram: &[u16; crate::VRAM_LEN], texture: &Texture) -> &[u16; 256] {
+        let needs_8bit = match texture.depth {
+            TextureDepth::Clut4 => false,
+            TextureDepth::Clut8 => true,
+            TextureDepth::Direct15 => return &self.entries,
+        };
+        let key = (texture.clut_x, texture.clut_y);
+        if self.key != Some(key) || (needs_8bit && !self.loaded_8bit) {
+            let count = if needs_8bit { 256 } else { 16 };
+            let row = (texture.clut_y as usize & 511) * VRAM_WIDTH;
+            for (i, entry) in self.entries.iter_mut().take(count).enumerate() {
+                *entry = vram[row + ((texture.clut_x as usize + i) & 1023)];
+            }
+            self.key = Some(key);
+            self.loaded_8bit = needs_8bit;
+        }
+        &self.entries
+    }
+}
+
+impl TextureWindow {
+    /// Apply the window to an 8-bit U: (u & !(maskX*8)) | ((offX & maskX) * 8) (gpu.md §7).
+    #[inline(always)]
+    pub fn apply_u(&self, u: u8) -> u8 {
+        (u & !(self.mask_x << 3)) | ((self.offset_x & self.mask_x) << 3)
+    }
+
+    /// Apply the window to an 8-bit V.
+    #[inline(always)]
+    pub fn apply_v(&self, v: u8) -> u8 {
+        (v & !(self.mask_y << 3)) | ((self.offset_y & self.mask_y) << 3)
+    }
+}
+
+/// Everything a textured span needs to fetch texels, fixed per primitive.
+#[derive(Clone, Copy)]
+pub struct Sampler<'a> {
+    /// Latched CLUT.
+    pub clut: &'a [u16; 256],
+    /// Page left edge.
+    pub page_x: usize,
+    /// Page top line.
+    pub page_y: usize,
+    /// Texture window.
+    pub window: TextureWindow,
+}
+
+impl Sampler<'_> {
+    /// The texel at (u, v) for a page of kind `kind` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
+    /// after the texture window; X wraps at 1024 (gpu.md §7).
+    #[inline(always)]
+    pub fn fetch(&self, kind: u8, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> u16 {
+        let u = self.window.apply_u(u) as usize;
+        let v = self.window.apply_v(v) as usize;
+        let row = ((self.page_y + v) & 511) * VRAM_WIDTH;
+        match kind {
+            1 => {
+                let word = vram[row + ((self.page_x + (u >> 2)) & 1023)];
+                self.clut[((word >> ((u & 3) * 4)) & 0xF) as usize]
+            }
+            2 => {
+                let word = vram[row + ((self.page_x + (u >> 1)) & 1023)];
+                self.clut[((word >> ((u & 1) * 8)) & 0xFF) as usize]
+            }
+            _ => vram[row + ((self.page_x + u) & 1023)],
+        }
+    }
 }

@@ -1,22 +1,201 @@
 //! Rasterization of decoded primitives into VRAM (gpu.md §3-§6).
+//!
+//! Each primitive picks, once, a span routine monomorphised for exactly the features it uses
+//! (Gouraud, texture depth, raw texture, blending, dithering, mask check): a flat untextured
+//! opaque triangle runs a loop with no texture, blend, dither or mask code in it.
 
-use crate::Vram;
-use crate::primitive::{Line, Rectangle, Triangle};
-use crate::state::DrawState;
-use crate::texture::ClutCache;
+mod line;
+mod rectangle;
+mod triangle;
+
+use crate::color::{blend, dither_channel, modulate_channel, pack555};
+use crate::primitive::{Line, Rectangle, Texture, Triangle};
+use crate::state::{BlendMode, DrawState, TextureDepth};
+use crate::texture::{ClutCache, Sampler};
+use crate::{VRAM_LEN, Vram};
+
+/// Texture kind as a const parameter: none, 4-bit, 8-bit or 15-bit.
+pub(crate) const TEX_NONE: u8 = 0;
+
+/// The const texture-kind code of a primitive's texture.
+fn texture_kind(texture: Option<&Texture>) -> u8 {
+    match texture.map(|t| t.depth) {
+        None => TEX_NONE,
+        Some(TextureDepth::Clut4) => 1,
+        Some(TextureDepth::Clut8) => 2,
+        Some(TextureDepth::Direct15) => 3,
+    }
+}
+
+/// Expand runtime booleans into const generic arguments: `dispatch!(f(args); [prefix]; a, b)`
+/// calls `f::<prefix.., a?, b?>(args)` with each flag as a literal.
+macro_rules! dispatch {
+    ($f:ident $args:tt; [$($done:tt)*];) => {
+        $f::<$($done)*> $args
+    };
+    ($f:ident $args:tt; [$($done:tt)*]; $b:expr $(, $rest:expr)*) => {
+        if $b {
+            dispatch!($f $args; [$($done)* true,]; $($rest),*)
+        } else {
+            dispatch!($f $args; [$($done)* false,]; $($rest),*)
+        }
+    };
+}
+
+/// Per-primitive constants of the pixel pipeline.
+#[derive(Clone, Copy)]
+pub(crate) struct PixelEnv<'a> {
+    /// OR-ed into every written pixel (E6 bit 0).
+    pub mask_or: u16,
+    /// Semi-transparency mode.
+    pub blend: BlendMode,
+    /// Texture fetch state (unused by untextured primitives).
+    pub sampler: Sampler<'a>,
+}
+
+/// Shade and write one pixel (gpu.md §6): texel fetch and transparency, modulation or raw
+/// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
+/// `rgb` holds 8-bit channels; `dither` the matrix entry for this pixel.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn shade_pixel<
+    const TEX: u8,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    index: usize,
+    rgb: [i32; 3],
+    u: u8,
+    v: u8,
+    dither: i32,
+    env: &PixelEnv,
+) {
+    let dst = vram[index & (VRAM_LEN - 1)];
+    if MASK_CHECK && dst & 0x8000 != 0 {
+        return;
+    }
+    let d = if DITHER { dither } else { 0 };
+    let (color, semi, bit15) = if TEX == TEX_NONE {
+        let c = pack555(
+            dither_channel(rgb[0], d),
+            dither_channel(rgb[1], d),
+            dither_channel(rgb[2], d),
+        );
+        (c, BLEND, 0)
+    } else {
+        let t = env.sampler.fetch(TEX, vram, u, v);
+        if t == 0 {
+            return;
+        }
+        let c = if RAW {
+            t & 0x7FFF
+        } else {
+            pack555(
+                modulate_channel(t & 0x1F, rgb[0], d),
+                modulate_channel((t >> 5) & 0x1F, rgb[1], d),
+                modulate_channel((t >> 10) & 0x1F, rgb[2], d),
+            )
+        };
+        (c, BLEND && t & 0x8000 != 0, t & 0x8000)
+    };
+    let color = if semi {
+        blend(env.blend, dst, color)
+    } else {
+        color
+    };
+    vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
+}
+
+/// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
+#[inline(always)]
+pub(crate) const fn wrap11(v: i32) -> i32 {
+    (v << 21) >> 21
+}
+
+fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
+    vram.as_mut_slice().try_into().ok()
+}
+
+fn env<'a>(
+    vram: &[u16; VRAM_LEN],
+    state: &DrawState,
+    clut: &'a mut ClutCache,
+    texture: Option<&Texture>,
+    blend: Option<BlendMode>,
+) -> PixelEnv<'a> {
+    let (page_x, page_y) = texture.map_or((0, 0), |t| (t.page_x as usize, t.page_y as usize));
+    let clut = match texture {
+        Some(t) => clut.latch(vram, t),
+        None => clut.entries(),
+    };
+    PixelEnv {
+        mask_or: if state.mask.set { 0x8000 } else { 0 },
+        blend: blend.unwrap_or_default(),
+        sampler: Sampler {
+            clut,
+            page_x,
+            page_y,
+            window: state.window,
+        },
+    }
+}
 
 /// Draw one triangle (gpu.md §3): size drop, fill rule, attribute stepping, texture,
 /// blending, dithering, mask.
 pub fn draw_triangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, tri: &Triangle) {
-    let _ = (vram, state, clut, tri);
+    let Some(vram) = vram_array(vram) else {
+        return;
+    };
+    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let raw = tri.texture.is_some_and(|t| t.raw);
+    let (g, b, d, m) = (
+        tri.gouraud,
+        tri.blend.is_some(),
+        tri.dither,
+        state.mask.check,
+    );
+    use triangle::draw;
+    match texture_kind(tri.texture.as_ref()) {
+        0 => dispatch!(draw(vram, state, &env, tri); [0,]; g, false, b, d, m),
+        1 => dispatch!(draw(vram, state, &env, tri); [1,]; g, raw, b, d, m),
+        2 => dispatch!(draw(vram, state, &env, tri); [2,]; g, raw, b, d, m),
+        _ => dispatch!(draw(vram, state, &env, tri); [3,]; g, raw, b, d, m),
+    }
 }
 
 /// Draw one line segment, both endpoints included (gpu.md §4).
 pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
-    let _ = (vram, state, line);
+    let Some(vram) = vram_array(vram) else {
+        return;
+    };
+    let mut clut = ClutCache::default();
+    let env = env(vram, state, &mut clut, None, line.blend);
+    let (g, b, d, m) = (
+        line.gouraud,
+        line.blend.is_some(),
+        line.dither,
+        state.mask.check,
+    );
+    use line::draw;
+    dispatch!(draw(vram, state, &env, line); []; g, b, d, m)
 }
 
 /// Draw one rectangle (gpu.md §5).
 pub fn draw_rectangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, rect: &Rectangle) {
-    let _ = (vram, state, clut, rect);
+    let Some(vram) = vram_array(vram) else {
+        return;
+    };
+    let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
+    let raw = rect.texture.is_some_and(|t| t.raw);
+    let (b, m) = (rect.blend.is_some(), state.mask.check);
+    use rectangle::draw;
+    match texture_kind(rect.texture.as_ref()) {
+        0 => dispatch!(draw(vram, state, &env, rect); [0,]; false, b, m),
+        1 => dispatch!(draw(vram, state, &env, rect); [1,]; raw, b, m),
+        2 => dispatch!(draw(vram, state, &env, rect); [2,]; raw, b, m),
+        _ => dispatch!(draw(vram, state, &env, rect); [3,]; raw, b, m),
+    }
 }

@@ -1,0 +1,188 @@
+//! GP1 display control (gpu.md §9) and the GPUSTAT register.
+
+use crate::Gpu;
+use crate::state::{BlendMode, TextureDepth};
+
+/// The part of VRAM the display shows, from GP1(05h) and GP1(08h).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DisplayArea {
+    /// Left edge in VRAM halfwords.
+    pub x: u16,
+    /// Top line.
+    pub y: u16,
+    /// Width in display pixels (256, 320, 368, 512 or 640).
+    pub width: u16,
+    /// Height in lines (240, or 480 when interlaced at 480 lines).
+    pub height: u16,
+    /// 24-bit colour display: each pixel spans 1.5 halfwords.
+    pub color_24bit: bool,
+}
+
+/// State written through GP1 (gpu.md §9).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DisplayState {
+    /// GP1(03h): display disabled.
+    pub disabled: bool,
+    /// GP1(04h): DMA direction (0 off, 1 FIFO, 2 CPU to GP0, 3 GPUREAD to CPU).
+    pub dma_direction: u8,
+    /// GP1(05h): display area start X (halfwords).
+    pub start_x: u16,
+    /// GP1(05h): display area start Y.
+    pub start_y: u16,
+    /// GP1(06h): horizontal display range X1, X2 (GPU clock ticks).
+    pub h_range: (u16, u16),
+    /// GP1(07h): vertical display range Y1, Y2 (scanlines).
+    pub v_range: (u16, u16),
+    /// GP1(08h): display mode bits 0-7.
+    pub mode: u8,
+}
+
+impl Default for DisplayState {
+    fn default() -> Self {
+        // GP1(00h) values (psx-spx "GP1(00h) Reset GPU").
+        Self {
+            disabled: true,
+            dma_direction: 0,
+            start_x: 0,
+            start_y: 0,
+            h_range: (0x200, 0x200 + 256 * 10),
+            v_range: (0x10, 0x10 + 240),
+            mode: 0,
+        }
+    }
+}
+
+impl DisplayState {
+    /// The displayed VRAM rectangle: width from mode bits 0-1 and 6 (256/320/512/640, 368),
+    /// height 480 when bits 2 and 5 (480 lines, interlace) are set, else 240; bit 4 24-bit.
+    pub fn area(&self) -> DisplayArea {
+        let width = if self.mode & 0x40 != 0 {
+            368
+        } else {
+            [256, 320, 512, 640][(self.mode & 3) as usize]
+        };
+        let height = if self.mode & 0x24 == 0x24 { 480 } else { 240 };
+        DisplayArea {
+            x: self.start_x,
+            y: self.start_y,
+            width,
+            height,
+            color_24bit: self.mode & 0x10 != 0,
+        }
+    }
+}
+
+impl Gpu {
+    /// One word written to the GP1 port (gpu.md §9).
+    pub fn gp1(&mut self, word: u32) {
+        match word >> 24 {
+            0x00 => self.reset(),
+            0x01 => self.reset_command_buffer(),
+            0x02 => self.irq = false,
+            0x03 => self.display.disabled = word & 1 != 0,
+            0x04 => self.display.dma_direction = (word & 3) as u8,
+            0x05 => {
+                self.display.start_x = (word & 0x3FF) as u16;
+                self.display.start_y = ((word >> 10) & 0x1FF) as u16;
+            }
+            0x06 => {
+                self.display.h_range = ((word & 0xFFF) as u16, ((word >> 12) & 0xFFF) as u16);
+            }
+            0x07 => {
+                self.display.v_range = ((word & 0x3FF) as u16, ((word >> 10) & 0x3FF) as u16);
+            }
+            0x08 => self.display.mode = (word & 0xFF) as u8,
+            0x09 => self.texture_disable_allowed = word & 1 != 0,
+            0x10..=0x1F => self.info(word),
+            _ => {}
+        }
+    }
+
+    /// GP1(00h): reset the command buffer, IRQ, display and drawing state; VRAM is kept.
+    fn reset(&mut self) {
+        self.reset_command_buffer();
+        self.irq = false;
+        self.display = DisplayState::default();
+        self.draw = Default::default();
+        self.texture_disable_allowed = false;
+        self.clut.invalidate();
+    }
+
+    /// GP1(01h): drop any partial packet and transfer.
+    fn reset_command_buffer(&mut self) {
+        self.gp0 = Default::default();
+        self.read = Default::default();
+    }
+
+    /// GP1(10h..1Fh): latch internal register `word & 7` into GPUREAD: 2 texture window,
+    /// 3/4 drawing area corners, 5 drawing offset, 7 GPU version (2); other indices keep the
+    /// latch (psx-spx "GP1(10h) Get GPU Info").
+    fn info(&mut self, word: u32) {
+        let d = &self.draw;
+        self.gpuread_latch = match word & 7 {
+            2 => {
+                let w = d.window;
+                w.mask_x as u32
+                    | (w.mask_y as u32) << 5
+                    | (w.offset_x as u32) << 10
+                    | (w.offset_y as u32) << 15
+            }
+            3 => d.area.left as u32 | (d.area.top as u32) << 10,
+            4 => d.area.right as u32 | (d.area.bottom as u32) << 10,
+            5 => (d.offset_x as u32 & 0x7FF) | (d.offset_y as u32 & 0x7FF) << 11,
+            7 => 2,
+            _ => self.gpuread_latch,
+        };
+    }
+
+    /// GPUSTAT (psx-spx "GPU Status Register"): draw mode bits 0-10, mask bits 11-12, display
+    /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA/ready bits 25-28, DMA direction
+    /// 29-30. Bit 13 reads 1 and bit 31 0 (no video timing is modelled).
+    pub fn gpustat(&self) -> u32 {
+        let m = &self.draw.mode;
+        let mut s = (m.page_x as u32 / 64) & 0xF;
+        s |= ((m.page_y as u32 / 256) & 1) << 4;
+        s |= (match m.blend {
+            BlendMode::Average => 0,
+            BlendMode::Add => 1,
+            BlendMode::Subtract => 2,
+            BlendMode::AddQuarter => 3,
+        }) << 5;
+        s |= (match m.depth {
+            TextureDepth::Clut4 => 0,
+            TextureDepth::Clut8 => 1,
+            TextureDepth::Direct15 => 2,
+        }) << 7;
+        s |= (m.dither as u32) << 9;
+        s |= (m.draw_to_display as u32) << 10;
+        s |= (self.draw.mask.set as u32) << 11;
+        s |= (self.draw.mask.check as u32) << 12;
+        s |= 1 << 13;
+        let mode = self.display.mode as u32;
+        s |= ((mode >> 7) & 1) << 14;
+        s |= (m.texture_disable as u32) << 15;
+        s |= ((mode >> 6) & 1) << 16;
+        s |= (mode & 3) << 17;
+        s |= ((mode >> 2) & 1) << 19;
+        s |= ((mode >> 3) & 1) << 20;
+        s |= ((mode >> 4) & 1) << 21;
+        s |= ((mode >> 5) & 1) << 22;
+        s |= (self.display.disabled as u32) << 23;
+        s |= (self.irq as u32) << 24;
+        let ready_cmd = self.gp0.idle();
+        let ready_read = self.read.active();
+        let ready_dma = !self.read.active();
+        let dma_request = match self.display.dma_direction {
+            0 => false,
+            1 => true,
+            2 => ready_dma,
+            _ => ready_read,
+        };
+        s |= (dma_request as u32) << 25;
+        s |= (ready_cmd as u32) << 26;
+        s |= (ready_read as u32) << 27;
+        s |= (ready_dma as u32) << 28;
+        s |= (self.display.dma_direction as u32) << 29;
+        s
+    }
+}

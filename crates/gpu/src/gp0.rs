@@ -1,0 +1,361 @@
+//! GP0: packet assembly (words arrive one at a time, split anywhere), decoding of render
+//! commands into primitives, environment commands E1h-E6h, and the transfer commands
+//! (gpu.md §2, §8).
+
+use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
+use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
+use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
+use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
+use crate::{Gpu, color};
+
+/// The longest fixed-size packet: a Gouraud textured quad, 12 words.
+const MAX_PACKET: usize = 12;
+
+/// What incoming GP0 words mean right now.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Mode {
+    /// Collecting a command packet.
+    #[default]
+    Command,
+    /// Receiving CPU-to-VRAM pixel data.
+    Write(WriteTransfer),
+    /// Receiving polyline vertices until the terminator.
+    Polyline(Polyline),
+}
+
+/// A polyline in progress (gpu.md §2, §4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Polyline {
+    line: Line,
+    /// Gouraud: the colour word of the next vertex has been read.
+    pending_color: Option<[u8; 3]>,
+}
+
+/// GP0 packet assembly state.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Gp0State {
+    buf: [u32; MAX_PACKET],
+    len: usize,
+    mode: Mode,
+}
+
+impl Gp0State {
+    /// No packet or transfer is in progress.
+    pub(crate) fn idle(&self) -> bool {
+        self.len == 0 && self.mode == Mode::Command
+    }
+}
+
+/// Words in the packet a command word starts (gpu.md §2).
+fn packet_len(cmd: u32) -> usize {
+    let op = cmd >> 24;
+    match op {
+        0x02 => 3,
+        0x20..=0x3F => {
+            let verts = if cmd & (1 << 27) != 0 { 4 } else { 3 };
+            let per_vertex = 1 + (cmd >> 26 & 1) as usize;
+            let colors = if cmd & (1 << 28) != 0 { verts - 1 } else { 0 };
+            1 + verts * per_vertex + colors
+        }
+        0x40..=0x5F => {
+            if cmd & (1 << 28) != 0 {
+                4
+            } else {
+                3
+            }
+        }
+        0x60..=0x7F => {
+            let textured = (cmd >> 26 & 1) as usize;
+            let variable = usize::from((cmd >> 27) & 3 == 0);
+            2 + textured + variable
+        }
+        0x80..=0x9F => 4,
+        0xA0..=0xDF => 3,
+        _ => 1,
+    }
+}
+
+/// Sign-extend the 11-bit field (gpu.md §2).
+const fn sext11(v: u32) -> i32 {
+    ((v << 21) as i32) >> 21
+}
+
+/// The polyline terminator, tested where the next vertex's first word would be (gpu.md §2).
+const fn is_terminator(word: u32) -> bool {
+    word & 0xF000_F000 == 0x5000_5000
+}
+
+fn blend_mode(bits: u32) -> BlendMode {
+    match bits & 3 {
+        0 => BlendMode::Average,
+        1 => BlendMode::Add,
+        2 => BlendMode::Subtract,
+        _ => BlendMode::AddQuarter,
+    }
+}
+
+fn texture_depth(bits: u32) -> TextureDepth {
+    match bits & 3 {
+        0 => TextureDepth::Clut4,
+        1 => TextureDepth::Clut8,
+        _ => TextureDepth::Direct15,
+    }
+}
+
+impl DrawMode {
+    /// GP0(E1h) bits 0-13 (gpu.md §2).
+    pub fn from_e1(word: u32) -> Self {
+        let mut m = DrawMode::default();
+        m.set_texpage(word);
+        m.dither = word & (1 << 9) != 0;
+        m.draw_to_display = word & (1 << 10) != 0;
+        m.flip_x = word & (1 << 12) != 0;
+        m.flip_y = word & (1 << 13) != 0;
+        m
+    }
+
+    /// The bits a polygon's texpage attribute rewrites: 0-8 and 11, never 9-10 (gpu.md §2).
+    pub fn set_texpage(&mut self, attr: u32) {
+        self.page_x = ((attr & 0xF) * 64) as u16;
+        self.page_y = ((attr >> 4 & 1) * 256) as u16;
+        self.blend = blend_mode(attr >> 5);
+        self.depth = texture_depth(attr >> 7);
+        self.texture_disable = attr & (1 << 11) != 0;
+    }
+}
+
+impl Gpu {
+    /// One word written to the GP0 port.
+    pub fn gp0(&mut self, word: u32) {
+        match self.gp0.mode {
+            Mode::Write(mut t) => {
+                let more = t.push(&mut self.vram, word, self.draw.mask);
+                self.gp0.mode = if more { Mode::Write(t) } else { Mode::Command };
+            }
+            Mode::Polyline(p) => self.polyline_word(p, word),
+            Mode::Command => {
+                let len = self.gp0.len;
+                if let Some(slot) = self.gp0.buf.get_mut(len) {
+                    *slot = word;
+                }
+                self.gp0.len = len + 1;
+                if self.gp0.len >= packet_len(self.gp0.buf[0]) {
+                    let packet = self.gp0.buf;
+                    self.gp0.len = 0;
+                    self.execute(&packet);
+                }
+            }
+        }
+    }
+
+    fn execute(&mut self, p: &[u32; MAX_PACKET]) {
+        let cmd = p[0];
+        match cmd >> 24 {
+            0x01 => self.clut.invalidate(),
+            0x02 => transfer::fill(&mut self.vram, cmd, p[1], p[2]),
+            0x1F => self.irq = true,
+            0x20..=0x3F => self.polygon(p),
+            0x40..=0x5F => self.line(p),
+            0x60..=0x7F => self.rectangle(p),
+            0x80..=0x9F => transfer::copy(&mut self.vram, p[1], p[2], p[3], self.draw.mask),
+            0xA0..=0xBF => {
+                let rect = TransferRect::decode(p[1], p[2]);
+                self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
+            }
+            0xC0..=0xDF => self.read = ReadTransfer::new(TransferRect::decode(p[1], p[2])),
+            0xE1 => {
+                let texture_disable = cmd & (1 << 11) != 0 && self.texture_disable_allowed;
+                self.draw.mode = DrawMode::from_e1(cmd);
+                self.draw.mode.texture_disable = texture_disable;
+            }
+            0xE2 => {
+                let w = &mut self.draw.window;
+                w.mask_x = (cmd & 0x1F) as u8;
+                w.mask_y = (cmd >> 5 & 0x1F) as u8;
+                w.offset_x = (cmd >> 10 & 0x1F) as u8;
+                w.offset_y = (cmd >> 15 & 0x1F) as u8;
+            }
+            0xE3 => {
+                self.draw.area.left = (cmd & 0x3FF) as u16;
+                self.draw.area.top = (cmd >> 10 & 0x1FF) as u16;
+            }
+            0xE4 => {
+                self.draw.area.right = (cmd & 0x3FF) as u16;
+                self.draw.area.bottom = (cmd >> 10 & 0x1FF) as u16;
+            }
+            0xE5 => {
+                self.draw.offset_x = sext11(cmd & 0x7FF) as i16;
+                self.draw.offset_y = sext11(cmd >> 11 & 0x7FF) as i16;
+            }
+            0xE6 => {
+                self.draw.mask.set = cmd & 1 != 0;
+                self.draw.mask.check = cmd & 2 != 0;
+            }
+            _ => {}
+        }
+    }
+
+    /// A vertex from a position word plus the drawing offset (gpu.md §2).
+    fn vertex(draw: &DrawState, pos: u32, rgb: u32) -> Vertex {
+        Vertex {
+            x: sext11(pos & 0x7FF) + draw.offset_x as i32,
+            y: sext11(pos >> 16 & 0x7FF) + draw.offset_y as i32,
+            color: color::unpack888(rgb),
+            u: 0,
+            v: 0,
+        }
+    }
+
+    fn textures_enabled(&self) -> bool {
+        !(self.draw.mode.texture_disable && self.texture_disable_allowed)
+    }
+
+    fn polygon(&mut self, p: &[u32; MAX_PACKET]) {
+        let cmd = p[0];
+        let gouraud = cmd & (1 << 28) != 0;
+        let quad = cmd & (1 << 27) != 0;
+        let textured = cmd & (1 << 26) != 0;
+        let semi = cmd & (1 << 25) != 0;
+        let raw = cmd & (1 << 24) != 0;
+        let count = if quad { 4 } else { 3 };
+        let mut verts = [Vertex::default(); 4];
+        let mut clut_attr = 0;
+        let mut i = 1;
+        for (n, v) in verts.iter_mut().take(count).enumerate() {
+            let rgb = if n > 0 && gouraud {
+                i += 1;
+                p.get(i - 1).copied().unwrap_or(0)
+            } else {
+                cmd
+            };
+            *v = Self::vertex(&self.draw, p.get(i).copied().unwrap_or(0), rgb);
+            i += 1;
+            if textured {
+                let uv = p.get(i).copied().unwrap_or(0);
+                i += 1;
+                v.u = uv as u8;
+                v.v = (uv >> 8) as u8;
+                match n {
+                    0 => clut_attr = uv >> 16,
+                    1 => self.draw.mode.set_texpage(uv >> 16),
+                    _ => {}
+                }
+            }
+        }
+        if textured && !self.texture_disable_allowed {
+            self.draw.mode.texture_disable = false;
+        }
+        let textured = textured && self.textures_enabled();
+        let texture = textured.then(|| self.texture(clut_attr, raw));
+        let tri = Triangle {
+            vertices: [verts[0], verts[1], verts[2]],
+            gouraud,
+            texture,
+            blend: semi.then_some(self.draw.mode.blend),
+            dither: self.draw.mode.dither && dither_applies(gouraud, textured, raw),
+        };
+        draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        if quad {
+            let second = Triangle {
+                vertices: [verts[1], verts[2], verts[3]],
+                ..tri
+            };
+            draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &second);
+        }
+    }
+
+    /// The texture of a primitive: E1's page and depth, the CLUT attribute given.
+    fn texture(&self, clut_attr: u32, raw: bool) -> Texture {
+        let m = &self.draw.mode;
+        Texture {
+            page_x: m.page_x,
+            page_y: m.page_y,
+            depth: m.depth,
+            clut_x: ((clut_attr & 0x3F) * 16) as u16,
+            clut_y: (clut_attr >> 6 & 0x1FF) as u16,
+            raw,
+        }
+    }
+
+    fn line(&mut self, p: &[u32; MAX_PACKET]) {
+        let cmd = p[0];
+        let gouraud = cmd & (1 << 28) != 0;
+        let polyline = cmd & (1 << 27) != 0;
+        let semi = cmd & (1 << 25) != 0;
+        let v0 = Self::vertex(&self.draw, p[1], cmd);
+        let v1 = if gouraud {
+            Self::vertex(&self.draw, p[3], p[2])
+        } else {
+            Self::vertex(&self.draw, p[2], cmd)
+        };
+        let line = Line {
+            vertices: [v0, v1],
+            gouraud,
+            blend: semi.then_some(self.draw.mode.blend),
+            dither: self.draw.mode.dither,
+        };
+        draw_line(&mut self.vram, &self.draw, &line);
+        if polyline {
+            self.gp0.mode = Mode::Polyline(Polyline {
+                line,
+                pending_color: None,
+            });
+        }
+    }
+
+    fn polyline_word(&mut self, mut p: Polyline, word: u32) {
+        let expecting_first_word = !p.line.gouraud || p.pending_color.is_none();
+        if expecting_first_word && is_terminator(word) {
+            self.gp0.mode = Mode::Command;
+            return;
+        }
+        if p.line.gouraud && p.pending_color.is_none() {
+            p.pending_color = Some(color::unpack888(word));
+            self.gp0.mode = Mode::Polyline(p);
+            return;
+        }
+        let last = p.line.vertices[1];
+        let mut next = Self::vertex(&self.draw, word, 0);
+        next.color = p.pending_color.unwrap_or(last.color);
+        p.line.vertices = [last, next];
+        p.pending_color = None;
+        draw_line(&mut self.vram, &self.draw, &p.line);
+        self.gp0.mode = Mode::Polyline(p);
+    }
+
+    fn rectangle(&mut self, p: &[u32; MAX_PACKET]) {
+        let cmd = p[0];
+        let textured = cmd & (1 << 26) != 0 && self.textures_enabled();
+        let has_uv = cmd & (1 << 26) != 0;
+        let semi = cmd & (1 << 25) != 0;
+        let raw = cmd & (1 << 24) != 0;
+        let mut origin = Self::vertex(&self.draw, p[1], cmd);
+        let mut i = 2;
+        let mut clut_attr = 0;
+        if has_uv {
+            origin.u = p[2] as u8;
+            origin.v = (p[2] >> 8) as u8;
+            clut_attr = p[2] >> 16;
+            i = 3;
+        }
+        let (width, height) = match (cmd >> 27) & 3 {
+            0 => {
+                let wh = p.get(i).copied().unwrap_or(0);
+                ((wh & 0x3FF) as u16, (wh >> 16 & 0x1FF) as u16)
+            }
+            1 => (1, 1),
+            2 => (8, 8),
+            _ => (16, 16),
+        };
+        let rect = Rectangle {
+            origin,
+            width,
+            height,
+            texture: textured.then(|| self.texture(clut_attr, raw)),
+            blend: semi.then_some(self.draw.mode.blend),
+            flip_x: self.draw.mode.flip_x,
+            flip_y: self.draw.mode.flip_y,
+        };
+        draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+    }
+}

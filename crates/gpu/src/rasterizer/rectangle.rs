@@ -1,0 +1,64 @@
+//! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
+//! wrapped at 256 (decremented when flipped), clipped to the drawing area.
+
+use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use crate::primitive::Rectangle;
+use crate::state::DrawState;
+use crate::{VRAM_LEN, VRAM_WIDTH};
+
+/// Draw with the pixel pipeline fixed by the const parameters.
+pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    state: &DrawState,
+    env: &PixelEnv,
+    rect: &Rectangle,
+) {
+    let o = rect.origin;
+    let (x0, y0) = (wrap11(o.x), wrap11(o.y));
+    let area = state.area;
+    let x_start = x0.max(area.left as i32);
+    let x_end = (x0 + rect.width as i32).min(area.right as i32 + 1);
+    let y_start = y0.max(area.top as i32);
+    let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
+    if x_start >= x_end || y_start >= y_end {
+        return;
+    }
+    let flat = o.color.map(|c| c as i32);
+    for y in y_start..y_end {
+        let row = ((y & 511) as usize) * VRAM_WIDTH;
+        if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
+            let c = crate::color::pack555(
+                (flat[0] >> 3) as u16,
+                (flat[1] >> 3) as u16,
+                (flat[2] >> 3) as u16,
+            ) | env.mask_or;
+            if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
+                s.fill(c);
+            }
+            continue;
+        }
+        let dy = (y - y0) as u8;
+        let v = if rect.flip_y {
+            o.v.wrapping_sub(dy)
+        } else {
+            o.v.wrapping_add(dy)
+        };
+        for x in x_start..x_end {
+            let dx = (x - x0) as u8;
+            let u = if rect.flip_x {
+                o.u.wrapping_sub(dx)
+            } else {
+                o.u.wrapping_add(dx)
+            };
+            shade_pixel::<TEX, RAW, BLEND, false, MASK_CHECK>(
+                vram,
+                row + x as usize,
+                flat,
+                u,
+                v,
+                0,
+                env,
+            );
+        }
+    }
+}

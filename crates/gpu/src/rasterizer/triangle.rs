@@ -1,0 +1,206 @@
+//! Triangle rasterization (gpu.md §3): core vertex, Y sort, 32.32 edge walking with the
+//! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
+//! vertex.
+
+use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use crate::color::DITHER_MATRIX;
+use crate::primitive::Triangle;
+use crate::state::DrawState;
+use crate::{VRAM_LEN, VRAM_WIDTH};
+
+#[derive(Clone, Copy, Default)]
+struct Vtx {
+    x: i32,
+    y: i32,
+    attr: [i32; 5],
+}
+
+/// An edge's start: x + 1 minus a small epsilon, in 32.32 fixed point (gpu.md §3.4).
+fn edge_start(x: i32) -> i64 {
+    ((x as i64) << 32) + (1i64 << 32) - (1 << 11)
+}
+
+/// An edge's step per line, rounded away from zero (gpu.md §3.4). `dy` > 0.
+fn edge_step(dx: i32, dy: i32) -> i64 {
+    let n = (dx as i64) << 32;
+    let n = if n < 0 {
+        n - (dy as i64 - 1)
+    } else {
+        n + (dy as i64 - 1)
+    };
+    n / dy as i64
+}
+
+/// d/dx and d/dy of one attribute in 8.24 (gpu.md §3.6), i32 maths with truncating division.
+fn gradient(v: &[Vtx; 3], i: usize, den: i64) -> (u32, u32) {
+    let (a, b, c) = (&v[0], &v[1], &v[2]);
+    let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
+    let ddx = ((ba - aa) * (c.y - b.y) as i64 - (ca - ba) * (b.y - a.y) as i64) * 4096 / den;
+    let ddy = ((b.x - a.x) as i64 * (ca - ba) - (c.x - b.x) as i64 * (ba - aa)) * 4096 / den;
+    ((ddx as i32 as u32) << 12, (ddy as i32 as u32) << 12)
+}
+
+/// Draw with the pixel pipeline fixed by the const parameters.
+pub(super) fn draw<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    state: &DrawState,
+    env: &PixelEnv,
+    tri: &Triangle,
+) {
+    let mut v = tri.vertices.map(|p| Vtx {
+        x: wrap11(p.x),
+        y: wrap11(p.y),
+        attr: [
+            p.color[0] as i32,
+            p.color[1] as i32,
+            p.color[2] as i32,
+            p.u as i32,
+            p.v as i32,
+        ],
+    });
+    // Size drop (gpu.md §3.2).
+    for (i, j) in [(0, 1), (1, 2), (0, 2)] {
+        if (v[i].x - v[j].x).abs() >= 1024 || (v[i].y - v[j].y).abs() >= 512 {
+            return;
+        }
+    }
+    // Core vertex from X before sorting (gpu.md §3.3).
+    let mut core = if v[1].x <= v[0].x {
+        if v[2].x <= v[1].x { 2 } else { 1 }
+    } else if v[2].x < v[0].x {
+        2
+    } else {
+        0
+    };
+    for (i, j) in [(1, 2), (0, 1), (1, 2)] {
+        if v[j].y < v[i].y {
+            v.swap(i, j);
+            if core == i {
+                core = j;
+            } else if core == j {
+                core = i;
+            }
+        }
+    }
+    let (a, b, c) = (v[0], v[1], v[2]);
+    if a.y == c.y {
+        return;
+    }
+    let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
+    if den == 0 {
+        return;
+    }
+    // Attribute set-up: 0-2 colour, 3-4 UV.
+    let mut grads = [(0u32, 0u32); 5];
+    let mut origin = [0u32; 5];
+    let cv = v[core];
+    let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
+    for i in 0..5 {
+        if used(i) {
+            grads[i] = gradient(&v, i, den);
+        }
+        origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
+    }
+    let flat = tri.vertices[0].color.map(|c| c as i32);
+
+    let base_step = edge_step(c.x - a.x, c.y - a.y);
+    let (upper_step, right_facing) = if b.y == a.y {
+        (0, b.x > a.x)
+    } else {
+        let s = edge_step(b.x - a.x, b.y - a.y);
+        (s, s > base_step)
+    };
+    let lower_step = if c.y == b.y {
+        0
+    } else {
+        edge_step(c.x - b.x, c.y - b.y)
+    };
+    let area = state.area;
+    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32);
+    let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
+
+    let mut span = |y: i32, base: i64, bound: i64| {
+        if y < clip_top || y > clip_bottom {
+            return;
+        }
+        let (left, right) = if right_facing {
+            (base, bound)
+        } else {
+            (bound, base)
+        };
+        let x_start = ((left >> 32) as i32).max(clip_left);
+        let x_end = ((right >> 32) as i32).min(clip_right);
+        if x_start >= x_end {
+            return;
+        }
+        let row = ((y & 511) as usize) * VRAM_WIDTH;
+        if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
+            let c = crate::color::pack555(
+                (flat[0] >> 3) as u16,
+                (flat[1] >> 3) as u16,
+                (flat[2] >> 3) as u16,
+            ) | env.mask_or;
+            if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
+                s.fill(c);
+            }
+            return;
+        }
+        let dx = x_start.wrapping_sub(cv.x) as u32;
+        let dy = y.wrapping_sub(cv.y) as u32;
+        let mut acc = [0u32; 5];
+        for i in 0..5 {
+            if used(i) {
+                acc[i] = origin[i]
+                    .wrapping_add(grads[i].0.wrapping_mul(dx))
+                    .wrapping_add(grads[i].1.wrapping_mul(dy));
+            }
+        }
+        let dither_row = DITHER_MATRIX[(y & 3) as usize];
+        for x in x_start..x_end {
+            let rgb = if GOURAUD {
+                [
+                    (acc[0] >> 24) as i32,
+                    (acc[1] >> 24) as i32,
+                    (acc[2] >> 24) as i32,
+                ]
+            } else {
+                flat
+            };
+            shade_pixel::<TEX, RAW, BLEND, DITHER, MASK_CHECK>(
+                vram,
+                row + x as usize,
+                rgb,
+                (acc[3] >> 24) as u8,
+                (acc[4] >> 24) as u8,
+                dither_row[(x & 3) as usize],
+                env,
+            );
+            for i in 0..5 {
+                if used(i) {
+                    acc[i] = acc[i].wrapping_add(grads[i].0);
+                }
+            }
+        }
+    };
+
+    // Upper part: rows a.y..b.y, walked down from a (gpu.md §3.4).
+    let start = edge_start(a.x);
+    for y in a.y..b.y {
+        let k = (y - a.y) as i64;
+        span(y, start + k * base_step, start + k * upper_step);
+    }
+    // Lower part: rows b.y..c.y, stepped back from c with pre-decrement.
+    let base_at_c = start + (c.y - a.y) as i64 * base_step;
+    let bound_at_c = edge_start(c.x);
+    for y in b.y..c.y {
+        let k = (c.y - y) as i64;
+        span(y, base_at_c - k * base_step, bound_at_c - k * lower_step);
+    }
+}

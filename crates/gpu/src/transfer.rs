@@ -1,0 +1,160 @@
+//! VRAM transfer commands: fill (02h), VRAM-to-VRAM copy (80h), CPU-to-VRAM (A0h) and
+//! VRAM-to-CPU (C0h) (gpu.md §8).
+
+use crate::state::MaskSettings;
+use crate::{VRAM_WIDTH, Vram};
+
+/// A transfer rectangle as the copy commands mask it (gpu.md §8): x & 3FFh, y & 1FFh,
+/// w = ((w-1) & 3FFh) + 1, h = ((h-1) & 1FFh) + 1, so a size of 0 means the maximum.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TransferRect {
+    /// Left edge.
+    pub x: u16,
+    /// Top line.
+    pub y: u16,
+    /// Width, 1..=1024.
+    pub w: u16,
+    /// Height, 1..=512.
+    pub h: u16,
+}
+
+impl TransferRect {
+    /// Decode a position word and a size word.
+    pub fn decode(pos: u32, size: u32) -> Self {
+        Self {
+            x: (pos & 0x3FF) as u16,
+            y: ((pos >> 16) & 0x1FF) as u16,
+            w: (((size & 0xFFFF).wrapping_sub(1) & 0x3FF) + 1) as u16,
+            h: ((((size >> 16) & 0xFFFF).wrapping_sub(1) & 0x1FF) + 1) as u16,
+        }
+    }
+
+    /// Pixels in the rectangle.
+    pub fn pixels(&self) -> u32 {
+        self.w as u32 * self.h as u32
+    }
+
+    /// VRAM (x, y) of pixel `i` in row-major order, wrapped at the VRAM edges.
+    fn position(&self, i: u32) -> (usize, usize) {
+        let w = self.w as u32;
+        (
+            ((self.x as u32 + i % w) & 1023) as usize,
+            ((self.y as u32 + i / w) & 511) as usize,
+        )
+    }
+}
+
+/// Write one transferred pixel obeying E6 (gpu.md §6, §8).
+fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSettings) {
+    if mask.check && vram.pixel(x, y) & 0x8000 != 0 {
+        return;
+    }
+    let set = if mask.set { 0x8000 } else { 0 };
+    vram.set_pixel(x, y, value | set);
+}
+
+/// GP0(02h) fill (gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
+/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6.
+pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) {
+    let x = (pos & 0x3F0) as usize;
+    let y = ((pos >> 16) & 0x1FF) as usize;
+    let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
+    let h = ((size >> 16) & 0x1FF) as usize;
+    let c = ((color & 0xFF) >> 3)
+        | (((color >> 8) & 0xFF) >> 3) << 5
+        | (((color >> 16) & 0xFF) >> 3) << 10;
+    let pixels = vram.as_mut_slice();
+    for row in 0..h {
+        let base = ((y + row) & 511) * VRAM_WIDTH;
+        for col in 0..w {
+            if let Some(p) = pixels.get_mut(base + ((x + col) & 1023)) {
+                *p = c as u16;
+            }
+        }
+    }
+}
+
+/// GP0(80h) VRAM-to-VRAM copy (gpu.md §8). Rows are copied top to bottom, each row read
+/// whole before it is written (docs/gpu.md, "Overlapping copies"); E6 applies.
+pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) {
+    let s = TransferRect::decode(src, size);
+    let d = TransferRect::decode(dst, size);
+    let mut row = [0u16; VRAM_WIDTH];
+    for r in 0..s.h as usize {
+        let sy = (s.y as usize + r) & 511;
+        let dy = (d.y as usize + r) & 511;
+        for (c, slot) in row.iter_mut().take(s.w as usize).enumerate() {
+            *slot = vram.pixel(s.x as usize + c, sy);
+        }
+        for (c, &value) in row.iter().take(s.w as usize).enumerate() {
+            write_masked(vram, d.x as usize + c, dy, value, mask);
+        }
+    }
+}
+
+/// A CPU-to-VRAM transfer in progress (GP0 A0h): pixels arrive two per word; an odd count
+/// leaves the last word's upper half unused (gpu.md §8).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct WriteTransfer {
+    rect: TransferRect,
+    next: u32,
+}
+
+impl WriteTransfer {
+    /// Start a transfer to `rect`.
+    pub fn new(rect: TransferRect) -> Self {
+        Self { rect, next: 0 }
+    }
+
+    /// Take one data word; returns false when the transfer is complete.
+    pub fn push(&mut self, vram: &mut Vram, word: u32, mask: MaskSettings) -> bool {
+        for half in [word as u16, (word >> 16) as u16] {
+            if self.next < self.rect.pixels() {
+                let (x, y) = self.rect.position(self.next);
+                write_masked(vram, x, y, half, mask);
+                self.next += 1;
+            }
+        }
+        self.next < self.rect.pixels()
+    }
+}
+
+/// A VRAM-to-CPU transfer in progress (GP0 C0h), read through GPUREAD.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReadTransfer {
+    rect: TransferRect,
+    next: u32,
+    active: bool,
+}
+
+impl ReadTransfer {
+    /// Start reading `rect`.
+    pub fn new(rect: TransferRect) -> Self {
+        Self {
+            rect,
+            next: 0,
+            active: true,
+        }
+    }
+
+    /// Whether words remain to be read.
+    pub fn active(&self) -> bool {
+        self.active
+    }
+
+    /// The next two pixels (first in the low half); the transfer ends after the last.
+    pub fn next_word(&mut self, vram: &Vram) -> u32 {
+        let mut word = 0u32;
+        for half in 0..2 {
+            if self.next < self.rect.pixels() {
+                let (x, y) = self.rect.position(self.next);
+                word |= (vram.pixel(x, y) as u32) << (16 * half);
+                self.next += 1;
+            }
+        }
+        if self.next >= self.rect.pixels() {
+            self.active = false;
+        }
+        word
+    }
+}
