@@ -1,4 +1,6 @@
 //! The wobble pipeline and tools: scene rendering through GTE -> ordering table -> GPU,
-//! command-stream replay and VRAM dumps.
+//! GTE vector replay, command-stream replay and VRAM dumps.
 
+pub mod gte_replay;
 pub mod render;
+pub mod vram_image;

@@ -1,1 +1,238 @@
-fn main() {}
+//! `wobble`: render scenes the PS1 way, replay GTE vectors and GPU command streams, dump VRAM.
+
+use clap::{Parser, Subcommand, ValueEnum};
+use gpu::{DisplayArea, Gpu, command_stream};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use wobble::vram_image::{self, Expand, PageDepth};
+
+#[derive(Parser)]
+#[command(
+    name = "wobble",
+    version,
+    about = "PS1 GTE + GPU emulation: render, replay, dump"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene (the built-in default scene without an argument) through GTE ->
+    /// ordering table -> GPU.
+    Render(wobble::render::RenderArgs),
+    /// GTE tools.
+    Gte {
+        #[command(subcommand)]
+        command: GteCommand,
+    },
+    /// Run a GP0/GP1 command stream on a fresh GPU and write VRAM as PNG and/or raw.
+    Replay(ReplayArgs),
+    /// Convert a raw VRAM file to PNG: whole VRAM, a display area, or a texture page.
+    Dump(DumpArgs),
+}
+
+#[derive(Subcommand)]
+enum GteCommand {
+    /// Replay a JSON-lines file of GTE vectors and compare every register.
+    Replay {
+        /// Vector file (schema: docs/formats.md).
+        file: PathBuf,
+        /// Print the computed registers as JSON lines instead of comparing.
+        #[arg(long)]
+        emit: bool,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum Region {
+    /// The whole 1024x512 VRAM.
+    Vram,
+    /// The display area.
+    Display,
+}
+
+#[derive(clap::Args)]
+struct ReplayArgs {
+    /// Command stream (.gpu text, docs/formats.md).
+    stream: PathBuf,
+    /// PNG output (default: the stream's file name with .png, in the current directory).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Also write the raw VRAM (1024*512 little-endian u16).
+    #[arg(long)]
+    raw: Option<PathBuf>,
+    /// What to write as PNG.
+    #[arg(long, value_enum, default_value_t = Region::Vram)]
+    region: Region,
+    /// 5-bit to 8-bit conversion.
+    #[arg(long, value_enum, default_value_t = Expand::Replicate)]
+    expand: Expand,
+}
+
+#[derive(clap::Args)]
+struct DumpArgs {
+    /// Raw VRAM file (1024*512 little-endian u16).
+    raw: PathBuf,
+    /// PNG output.
+    #[arg(short, long, default_value = "vram.png")]
+    output: PathBuf,
+    /// What to write (ignored with --texpage).
+    #[arg(long, value_enum, default_value_t = Region::Vram)]
+    region: Region,
+    /// Display area for --region display: X,Y,WxH or X,Y,WxH,24 for 24-bit colour.
+    #[arg(long, default_value = "0,0,320x240")]
+    display: String,
+    /// View a texture page at VRAM X,Y (X multiple of 64, Y 0 or 256 on hardware).
+    #[arg(long)]
+    texpage: Option<String>,
+    /// Texture depth for --texpage: 4, 8 or 15.
+    #[arg(long, default_value_t = 4)]
+    depth: u8,
+    /// CLUT position X,Y for 4/8-bit pages.
+    #[arg(long, default_value = "0,0")]
+    clut: String,
+    /// 5-bit to 8-bit conversion.
+    #[arg(long, value_enum, default_value_t = Expand::Replicate)]
+    expand: Expand,
+}
+
+type Result<T> = std::result::Result<T, String>;
+
+fn read_text(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+fn parse_pair(text: &str, what: &str) -> Result<(usize, usize)> {
+    let mut it = text.split(',').map(|s| s.trim().parse::<usize>());
+    match (it.next(), it.next(), it.next()) {
+        (Some(Ok(a)), Some(Ok(b)), None) if a < 1024 && b < 512 => Ok((a, b)),
+        _ => Err(format!(
+            "{what}: expected X,Y with X < 1024 and Y < 512, got `{text}`"
+        )),
+    }
+}
+
+fn parse_display(text: &str) -> Result<DisplayArea> {
+    let err = || format!("--display: expected X,Y,WxH[,24], got `{text}`");
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() < 3 || parts.len() > 4 {
+        return Err(err());
+    }
+    let (x, y) = parse_pair(&format!("{},{}", parts[0], parts[1]), "--display")?;
+    let (w, h) = parts[2].split_once('x').ok_or_else(err)?;
+    let w: u16 = w.parse().map_err(|_| err())?;
+    let h: u16 = h.parse().map_err(|_| err())?;
+    if w == 0 || h == 0 || w > 1024 || h > 512 {
+        return Err(format!(
+            "--display: size {w}x{h} outside 1..=1024 x 1..=512"
+        ));
+    }
+    let color_24bit = match parts.get(3) {
+        None => false,
+        Some(&"24") => true,
+        Some(_) => return Err(err()),
+    };
+    Ok(DisplayArea {
+        x: x as u16,
+        y: y as u16,
+        width: w,
+        height: h,
+        color_24bit,
+    })
+}
+
+fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
+    let text = read_text(file)?;
+    let outcome = wobble::gte_replay::replay(&text, emit);
+    for e in &outcome.errors {
+        eprintln!("{}: {e}", file.display());
+    }
+    for line in &outcome.output {
+        println!("{line}");
+    }
+    let summary = format!("{} passed, {} failed", outcome.passed, outcome.failed);
+    if emit {
+        eprintln!("{summary}");
+    } else {
+        println!("{summary}");
+    }
+    Ok(outcome.failed == 0)
+}
+
+fn replay(args: &ReplayArgs) -> Result<()> {
+    let text = read_text(&args.stream)?;
+    let commands =
+        command_stream::parse(&text).map_err(|e| format!("{}: {e}", args.stream.display()))?;
+    let mut gpu = Gpu::new();
+    command_stream::run(&mut gpu, &commands);
+    let vram = gpu.vram().as_slice();
+    let output = args.output.clone().unwrap_or_else(|| {
+        let stem = args.stream.file_stem().unwrap_or_default();
+        PathBuf::from(stem).with_extension("png")
+    });
+    let img = match args.region {
+        Region::Vram => vram_image::vram_image(vram, args.expand),
+        Region::Display => vram_image::display_image(vram, gpu.display_area(), args.expand),
+    };
+    vram_image::save_png(&img, &output).map_err(|e| e.to_string())?;
+    eprintln!("wrote {}", output.display());
+    if let Some(raw) = &args.raw {
+        std::fs::write(raw, vram_image::raw_to_bytes(vram))
+            .map_err(|e| format!("{}: {e}", raw.display()))?;
+        eprintln!("wrote {}", raw.display());
+    }
+    Ok(())
+}
+
+fn dump(args: &DumpArgs) -> Result<()> {
+    let bytes = std::fs::read(&args.raw).map_err(|e| format!("{}: {e}", args.raw.display()))?;
+    let vram =
+        vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", args.raw.display()))?;
+    if let Some(page) = &args.texpage {
+        let (px, py) = parse_pair(page, "--texpage")?;
+        let depth = match args.depth {
+            4 => PageDepth::Clut4,
+            8 => PageDepth::Clut8,
+            15 | 16 => PageDepth::Direct15,
+            d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
+        };
+        let clut = parse_pair(&args.clut, "--clut")?;
+        let img = vram_image::texture_page_image(&vram, px, py, depth, clut, args.expand);
+        vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
+    } else {
+        let img = match args.region {
+            Region::Vram => vram_image::vram_image(&vram, args.expand),
+            Region::Display => {
+                vram_image::display_image(&vram, parse_display(&args.display)?, args.expand)
+            }
+        };
+        vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
+    }
+    eprintln!("wrote {}", args.output.display());
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Render(args) => wobble::render::run(args).map(|summary| {
+            println!("{summary}");
+            true
+        }),
+        Command::Gte {
+            command: GteCommand::Replay { file, emit },
+        } => gte_replay(file, *emit),
+        Command::Replay(args) => replay(args).map(|()| true),
+        Command::Dump(args) => dump(args).map(|()| true),
+    };
+    match result {
+        Ok(true) => ExitCode::SUCCESS,
+        Ok(false) => ExitCode::FAILURE,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,222 @@
+//! Replay of GTE test vectors in the JSON-lines schema of `fixtures/gte/README.md`
+//! (docs/formats.md, "GTE vector files").
+
+use gte::{Gte, REGISTER_NAMES};
+use serde_json::Value;
+use std::fmt::Write as _;
+
+/// Outcome of a replay: counts and the text to print.
+#[derive(Debug, Default, Clone, PartialEq, Eq)]
+pub struct ReplayOutcome {
+    /// Vectors whose 64 registers all matched (or, when emitting, that ran).
+    pub passed: usize,
+    /// Vectors that differed or could not be read.
+    pub failed: usize,
+    /// Report lines (failures; or, when emitting, one JSON object per vector).
+    pub output: Vec<String>,
+    /// Malformed input lines, each naming its line number.
+    pub errors: Vec<String>,
+}
+
+/// A vector as read from one line.
+struct Vector {
+    name: String,
+    cmd: Option<u32>,
+    writes: Vec<(usize, u32)>,
+    expected: Option<[u32; 64]>,
+}
+
+fn u32_field(v: &Value, what: &str) -> Result<u32, String> {
+    v.as_u64()
+        .and_then(|n| u32::try_from(n).ok())
+        .ok_or_else(|| format!("{what} is not an integer in 0..=4294967295"))
+}
+
+fn registers(v: &Value, field: &str) -> Result<Option<Vec<u32>>, String> {
+    match v.get(field) {
+        None | Some(Value::Null) => Ok(None),
+        Some(Value::Array(items)) => {
+            if items.len() != 32 {
+                return Err(format!("`{field}` has {} values, expected 32", items.len()));
+            }
+            items
+                .iter()
+                .enumerate()
+                .map(|(i, x)| u32_field(x, &format!("`{field}`[{i}]")))
+                .collect::<Result<Vec<_>, _>>()
+                .map(Some)
+        }
+        Some(_) => Err(format!("`{field}` is not an array")),
+    }
+}
+
+fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, String> {
+    if !v.is_object() {
+        return Err("not a JSON object".into());
+    }
+    let name = match v.get("name") {
+        Some(Value::String(s)) => s.clone(),
+        _ => format!("line {line}"),
+    };
+    let cmd = match v.get("cmd") {
+        None | Some(Value::Null) => None,
+        Some(c) => Some(u32_field(c, "`cmd`")?),
+    };
+    let writes = match v.get("writes") {
+        Some(Value::Array(items)) => {
+            let mut writes = Vec::with_capacity(items.len());
+            for (i, w) in items.iter().enumerate() {
+                let pair = w
+                    .as_array()
+                    .filter(|p| p.len() == 2)
+                    .ok_or_else(|| format!("`writes`[{i}] is not a [reg, value] pair"))?;
+                let reg = pair[0]
+                    .as_u64()
+                    .filter(|r| *r < 64)
+                    .ok_or_else(|| format!("`writes`[{i}]: register index must be 0..=63"))?;
+                let value = u32_field(&pair[1], &format!("`writes`[{i}] value"))?;
+                writes.push((reg as usize, value));
+            }
+            writes
+        }
+        Some(_) => return Err("`writes` is not an array".into()),
+        None => {
+            let data = registers(v, "in_data")?.ok_or("missing `in_data`")?;
+            let ctrl = registers(v, "in_ctrl")?.ok_or("missing `in_ctrl`")?;
+            data.into_iter().chain(ctrl).enumerate().collect()
+        }
+    };
+    let expected = if emit {
+        None
+    } else {
+        let data = registers(v, "out_data")?.ok_or("missing `out_data`")?;
+        let ctrl = registers(v, "out_ctrl")?.ok_or("missing `out_ctrl`")?;
+        let mut all = [0u32; 64];
+        for (slot, value) in all.iter_mut().zip(data.into_iter().chain(ctrl)) {
+            *slot = value;
+        }
+        Some(all)
+    };
+    Ok(Vector {
+        name,
+        cmd,
+        writes,
+        expected,
+    })
+}
+
+/// Run one vector on a fresh GTE and read all 64 registers back.
+fn run(vector: &Vector) -> [u32; 64] {
+    let mut gte = Gte::new();
+    for &(reg, value) in &vector.writes {
+        gte.write(reg, value);
+    }
+    if let Some(cmd) = vector.cmd {
+        gte.execute(cmd);
+    }
+    let mut out = [0u32; 64];
+    for (reg, slot) in out.iter_mut().enumerate() {
+        *slot = gte.read(reg);
+    }
+    out
+}
+
+/// Replay every vector of a JSON-lines text. Without `emit`, each vector's registers are
+/// compared with `out_data`/`out_ctrl`; with it, the computed registers are emitted as JSON.
+/// A malformed line is reported with its number, counted as failed, and the rest still runs.
+pub fn replay(text: &str, emit: bool) -> ReplayOutcome {
+    let mut outcome = ReplayOutcome::default();
+    for (index, line) in text.lines().enumerate() {
+        let number = index + 1;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let vector = serde_json::from_str::<Value>(line)
+            .map_err(|e| format!("not JSON: {e}"))
+            .and_then(|v| parse_vector(&v, number, emit));
+        let vector = match vector {
+            Ok(v) => v,
+            Err(e) => {
+                outcome.errors.push(format!("line {number}: {e}"));
+                outcome.failed += 1;
+                continue;
+            }
+        };
+        let got = run(&vector);
+        match vector.expected {
+            None => {
+                let json = serde_json::json!({
+                    "name": vector.name,
+                    "out_data": &got[..32],
+                    "out_ctrl": &got[32..],
+                });
+                outcome.output.push(json.to_string());
+                outcome.passed += 1;
+            }
+            Some(expected) => {
+                let mut report = String::new();
+                for (reg, (g, e)) in got.iter().zip(expected.iter()).enumerate() {
+                    if g != e {
+                        let _ = write!(
+                            report,
+                            "\n  {:<9} got {g:08X} expected {e:08X}",
+                            REGISTER_NAMES[reg]
+                        );
+                    }
+                }
+                if report.is_empty() {
+                    outcome.passed += 1;
+                } else {
+                    outcome.failed += 1;
+                    outcome
+                        .output
+                        .push(format!("FAIL {} (line {number}):{report}", vector.name));
+                }
+            }
+        }
+    }
+    outcome
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn zeros() -> String {
+        format!("[{}]", vec!["0"; 32].join(","))
+    }
+
+    #[test]
+    fn register_only_vector_passes_and_mismatch_is_reported() {
+        let z = zeros();
+        let good = format!(
+            r#"{{"name":"zero","cmd":null,"in_data":{z},"in_ctrl":{z},"out_data":{z},"out_ctrl":{z}}}"#
+        );
+        // LZCR (r31) of LZCS = 0 reads 32, so an all-zero expectation fails on LZCR only.
+        let out = replay(&good, false);
+        assert_eq!((out.passed, out.failed), (0, 1));
+        assert!(out.output[0].contains("LZCR"));
+        assert!(out.output[0].contains("got 00000020 expected 00000000"));
+    }
+
+    #[test]
+    fn writes_field_replaces_index_order() {
+        // Write LZCS = 1 through the writes list: LZCR reads 31.
+        let line = r#"{"name":"w","cmd":null,"writes":[[30,1]]}"#;
+        let out = replay(line, true);
+        assert_eq!(out.passed, 1);
+        let v: Value = serde_json::from_str(&out.output[0]).unwrap();
+        assert_eq!(v["out_data"][31], 31);
+        assert_eq!(v["out_data"][30], 1);
+    }
+
+    #[test]
+    fn bad_lines_are_numbered_and_the_rest_runs() {
+        let text = "not json\n{\"name\":\"x\",\"writes\":[[64,1]]}\n\n{\"writes\":[]}";
+        let out = replay(text, true);
+        assert_eq!(out.failed, 2);
+        assert!(out.errors[0].starts_with("line 1:"));
+        assert!(out.errors[1].starts_with("line 2:"));
+        assert_eq!(out.passed, 1);
+    }
+}
