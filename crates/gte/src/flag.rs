@@ -80,9 +80,9 @@ impl Flag {
         self.0 & other.0 != 0
     }
 
-    /// The union of two sets, with bit 31 recomputed.
+    /// The union of two sets (bit by bit; bit 31 is not recomputed).
     pub const fn union(self, other: Flag) -> Flag {
-        Flag::from_bits(self.0 | other.0)
+        Flag(self.0 | other.0)
     }
 
     /// Whether the error summary (bit 31) is set.

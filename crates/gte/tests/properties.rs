@@ -1,0 +1,352 @@
+//! Property tests of the register-level engine. Expected values come from the fact sheet's
+//! rules evaluated independently here in i128 (never from the engine's own output).
+
+use gte::command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
+use gte::unr::{exact_divide, unr_divide};
+use gte::{Flag, Gte};
+use proptest::prelude::*;
+
+const MAC_MAX: i128 = (1 << 43) - 1;
+const MAC_MIN: i128 = -(1 << 43);
+
+fn any_command() -> impl Strategy<Value = u32> {
+    prop_oneof![
+        any::<u32>(),
+        (prop::sample::select(Opcode::ALL.to_vec()), any::<u32>())
+            .prop_map(|(op, bits)| (bits & !0x3F) | op.bits()),
+    ]
+}
+
+fn packed(lo: i16, hi: i16) -> u32 {
+    (lo as u16 as u32) | ((hi as u16 as u32) << 16)
+}
+
+fn cmd(op: Opcode, sf: bool, lm: bool) -> u32 {
+    Command::build(
+        op,
+        sf,
+        lm,
+        MatrixSel::Rotation,
+        VectorSel::V0,
+        TranslationSel::None,
+    )
+    .word()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Any register state and any 32-bit command word: no panic (overflow checks are on in
+    /// tests), every register readable, FLAG bits 0-11 zero and bit 31 the OR of its sources.
+    #[test]
+    fn no_panic_any_state_any_command(regs in prop::collection::vec(any::<u32>(), 64), word in any_command()) {
+        let mut gte = Gte::new();
+        for (i, v) in regs.iter().enumerate() {
+            gte.write(i, *v);
+        }
+        gte.execute(word);
+        for i in 0..64 {
+            let _ = gte.read(i);
+        }
+        let flag = gte.read(63);
+        prop_assert_eq!(flag & 0xFFF, 0);
+        prop_assert_eq!(flag >> 31 == 1, flag & 0x7F87_E000 != 0);
+    }
+
+    /// UNR against exact rounded division: never more than 3 units apart (docs/gte.md states
+    /// the bound and the exhaustive sweep that establishes it).
+    #[test]
+    fn unr_within_bound_of_exact(sz3 in 1u16.., h_frac in 0.0f64..1.0) {
+        let h = ((2 * sz3 as u32 - 1) as f64 * h_frac) as u32;
+        let h = h.min(0xFFFF) as u16;
+        prop_assume!((h as u32) < 2 * sz3 as u32);
+        let (q, overflow) = unr_divide(h, sz3);
+        prop_assert!(!overflow);
+        let exact = ((h as u128) << 16) as f64 / sz3 as f64;
+        let exact = (exact + 0.5).floor().min(0x1FFFF as f64) as i64;
+        prop_assert!((q as i64 - exact).abs() <= 3, "H={} SZ3={} unr={} exact={}", h, sz3, q, exact);
+        prop_assert_eq!(exact_divide(h, sz3).0 as i64, exact);
+    }
+
+    /// Overflow rule: H >= 2*SZ3 gives 1FFFFh with FLAG.17, otherwise no flag.
+    #[test]
+    fn unr_overflow_rule(h in any::<u16>(), sz3 in any::<u16>()) {
+        let (q, overflow) = unr_divide(h, sz3);
+        prop_assert_eq!(overflow, h as u32 >= 2 * sz3 as u32);
+        if overflow {
+            prop_assert_eq!(q, 0x1FFFF);
+        }
+        prop_assert!(q <= 0x1FFFF);
+    }
+
+    /// MAC1 44-bit flags: MVMVA (RT, V0, TR) with only RT11 non-zero, so the running sum after
+    /// the first product is the final one: TRX<<12 + RT11*VX.
+    #[test]
+    fn mac1_overflow_flags(trx in any::<i32>(), rt11 in any::<i16>(), vx in any::<i16>(), sf in any::<bool>()) {
+        let mut gte = Gte::new();
+        gte.write_control(0, rt11 as u16 as u32);
+        gte.write_control(5, trx as u32);
+        gte.write_data(0, packed(vx, 0));
+        let word = Command::build(Opcode::Mvmva, sf, false, MatrixSel::Rotation, VectorSel::V0, TranslationSel::Translation).word();
+        gte.execute(word);
+        let sum = ((trx as i128) << 12) + rt11 as i128 * vx as i128;
+        let flag = gte.flag();
+        prop_assert_eq!(flag.contains(Flag::MAC1_POSITIVE_OVERFLOW), sum > MAC_MAX);
+        prop_assert_eq!(flag.contains(Flag::MAC1_NEGATIVE_OVERFLOW), sum < MAC_MIN);
+        // MAC1 is the 44-bit wrapped sum shifted, low 32 bits.
+        let wrapped = if sum > MAC_MAX { sum - (1 << 44) } else if sum < MAC_MIN { sum + (1 << 44) } else { sum };
+        let shift = if sf { 12 } else { 0 };
+        prop_assert_eq!(gte.read_data(25), (wrapped >> shift) as i32 as u32);
+    }
+
+    /// IR1-3 saturation with both lm settings: MVMVA (RT, V0, no add) with sf=0, where the
+    /// products are small enough that MACn is the exact dot product.
+    #[test]
+    fn ir_saturation_flags(m in prop::array::uniform9(-2000i16..2000), v in prop::array::uniform3(any::<i16>()), lm in any::<bool>()) {
+        let mut gte = Gte::new();
+        let words = [packed(m[0], m[1]), packed(m[2], m[3]), packed(m[4], m[5]), packed(m[6], m[7]), m[8] as u32];
+        for (i, w) in words.into_iter().enumerate() {
+            gte.write_control(i, w);
+        }
+        gte.write_data(0, packed(v[0], v[1]));
+        gte.write_data(1, v[2] as u16 as u32);
+        let word = Command::build(Opcode::Mvmva, false, lm, MatrixSel::Rotation, VectorSel::V0, TranslationSel::None).word();
+        gte.execute(word);
+        let flag = gte.flag();
+        let min = if lm { 0 } else { -0x8000 };
+        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED, Flag::IR3_SATURATED];
+        for row in 0..3 {
+            let dot: i128 = (0..3).map(|c| m[row * 3 + c] as i128 * v[c] as i128).sum();
+            prop_assert_eq!(gte.read_data(25 + row) as i32 as i128, dot);
+            let out = !(min..=0x7FFF).contains(&dot);
+            prop_assert_eq!(flag.contains(bits[row]), out);
+            prop_assert_eq!(gte.read_data(9 + row) as i32 as i128, dot.clamp(min, 0x7FFF));
+        }
+    }
+
+    /// MAC0 flags and value: NCLIP of arbitrary screen XY values.
+    #[test]
+    fn nclip_mac0_flags(p in prop::array::uniform6(any::<i16>())) {
+        let mut gte = Gte::new();
+        for i in 0..3 {
+            gte.write_data(12 + i, packed(p[2 * i], p[2 * i + 1]));
+        }
+        gte.execute(Opcode::Nclip.bits());
+        let [x0, y0, x1, y1, x2, y2] = p.map(|v| v as i128);
+        let area = x0 * y1 + x1 * y2 + x2 * y0 - x0 * y2 - x1 * y0 - x2 * y1;
+        let flag = gte.flag();
+        prop_assert_eq!(flag.contains(Flag::MAC0_POSITIVE_OVERFLOW), area > i32::MAX as i128);
+        prop_assert_eq!(flag.contains(Flag::MAC0_NEGATIVE_OVERFLOW), area < i32::MIN as i128);
+        prop_assert_eq!(gte.read_data(24), area as u32);
+    }
+
+    /// SZ3/OTZ saturation: AVSZ3 and AVSZ4 with arbitrary ZSF and SZ values.
+    #[test]
+    fn otz_saturation(zsf in any::<i16>(), sz in prop::array::uniform4(any::<u16>()), four in any::<bool>()) {
+        let mut gte = Gte::new();
+        for (i, z) in sz.iter().enumerate() {
+            gte.write_data(16 + i, *z as u32);
+        }
+        gte.write_control(if four { 30 } else { 29 }, zsf as u16 as u32);
+        gte.execute(if four { Opcode::Avsz4 } else { Opcode::Avsz3 }.bits());
+        let sum: i128 = if four { sz.iter().map(|&z| z as i128).sum() } else { sz[1..].iter().map(|&z| z as i128).sum() };
+        let s = zsf as i128 * sum;
+        let otz = s >> 12;
+        prop_assert_eq!(gte.flag().contains(Flag::SZ3_OTZ_SATURATED), !(0..=0xFFFF).contains(&otz));
+        prop_assert_eq!(gte.read_data(7) as i128, otz.clamp(0, 0xFFFF));
+        prop_assert_eq!(gte.read_data(24), s as u32);
+    }
+
+    /// Colour FIFO saturation: GPF, Cn = (IRn * IR0 >> shift) >> 4 clamped to 0..FFh.
+    #[test]
+    fn color_saturation(ir in prop::array::uniform3(any::<i16>()), ir0 in any::<i16>(), sf in any::<bool>()) {
+        let mut gte = Gte::new();
+        gte.write_data(8, ir0 as u16 as u32);
+        for (i, v) in ir.iter().enumerate() {
+            gte.write_data(9 + i, *v as u16 as u32);
+        }
+        gte.execute(cmd(Opcode::Gpf, sf, false));
+        let shift = if sf { 12 } else { 0 };
+        let bits = [Flag::COLOR_R_SATURATED, Flag::COLOR_G_SATURATED, Flag::COLOR_B_SATURATED];
+        let rgb2 = gte.read_data(22);
+        for n in 0..3 {
+            let mac = (ir[n] as i128 * ir0 as i128) >> shift;
+            let c = mac >> 4;
+            prop_assert_eq!(gte.flag().contains(bits[n]), !(0..=0xFF).contains(&c));
+            prop_assert_eq!(((rgb2 >> (8 * n)) & 0xFF) as i128, c.clamp(0, 0xFF));
+        }
+    }
+
+    /// SX2/SY2 and IR0 saturation in RTPS: X = q*IR1 + OFX, SX = X >> 16 saturated to
+    /// -400h..3FFh; D = q*DQA + DQB, IR0 = D >> 12 saturated to 0..1000h; q from the UNR divide
+    /// (itself held to hardware vectors and the exhaustive sweep).
+    #[test]
+    fn screen_and_ir0_saturation(
+        v in prop::array::uniform3(-4000i16..4000), trz in 1i32..30000, h in any::<u16>(),
+        ofx in any::<i32>(), ofy in any::<i32>(), dqa in any::<i16>(), dqb in any::<i32>()
+    ) {
+        let mut gte = Gte::new();
+        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
+            gte.write_control(i, w);
+        }
+        gte.write_control(7, trz as u32);
+        gte.write_control(24, ofx as u32);
+        gte.write_control(25, ofy as u32);
+        gte.write_control(26, h as u32);
+        gte.write_control(27, dqa as u16 as u32);
+        gte.write_control(28, dqb as u32);
+        gte.write_data(0, packed(v[0], v[1]));
+        gte.write_data(1, v[2] as u16 as u32);
+        gte.execute(cmd(Opcode::Rtps, true, false));
+        // Identity rotation, sf=1: IR = V (+TR), SZ3 = VZ + TRZ.
+        let z = v[2] as i128 + trz as i128;
+        prop_assert_eq!(gte.read_data(19) as i128, z.clamp(0, 0xFFFF));
+        let (q, _) = unr_divide(h, z.clamp(0, 0xFFFF) as u16);
+        let q = q as i128;
+        let x = q * v[0] as i128 + ofx as i128;
+        let y = q * v[1] as i128 + ofy as i128;
+        let (sx, sy) = (x >> 16, y >> 16);
+        let flag = gte.flag();
+        prop_assert_eq!(flag.contains(Flag::SX2_SATURATED), !(-0x400..=0x3FF).contains(&sx));
+        prop_assert_eq!(flag.contains(Flag::SY2_SATURATED), !(-0x400..=0x3FF).contains(&sy));
+        let sxy = gte.read_data(14);
+        prop_assert_eq!(sxy as u16 as i16 as i128, sx.clamp(-0x400, 0x3FF));
+        prop_assert_eq!((sxy >> 16) as u16 as i16 as i128, sy.clamp(-0x400, 0x3FF));
+        let d = q * dqa as i128 + dqb as i128;
+        prop_assert_eq!(flag.contains(Flag::IR0_SATURATED), !(0..=0x1000).contains(&(d >> 12)));
+        prop_assert_eq!(gte.read_data(8) as i128, (d >> 12).clamp(0, 0x1000));
+        let mac0_out = d > i32::MAX as i128 || d < i32::MIN as i128
+            || x > i32::MAX as i128 || x < i32::MIN as i128
+            || y > i32::MAX as i128 || y < i32::MIN as i128;
+        prop_assert_eq!(flag.intersects(Flag::MAC0_POSITIVE_OVERFLOW.union(Flag::MAC0_NEGATIVE_OVERFLOW)), mac0_out);
+    }
+
+    /// Register read/write rules (gte.md §2).
+    #[test]
+    fn register_quirks(value in any::<u32>()) {
+        let mut gte = Gte::new();
+        let sext = value as u16 as i16 as i32 as u32;
+        let zext = value & 0xFFFF;
+        for r in [1, 3, 5, 8, 9, 10, 11] {
+            gte.write_data(r, value);
+            prop_assert_eq!(gte.read_data(r), sext, "r{}", r);
+        }
+        for r in [7, 16, 17, 18, 19] {
+            gte.write_data(r, value);
+            prop_assert_eq!(gte.read_data(r), zext, "r{}", r);
+        }
+        for r in [4, 12, 20, 26, 27, 29, 30] {
+            gte.write_control(r, value);
+            prop_assert_eq!(gte.read_control(r), sext, "c{}", r);
+        }
+        // FLAG: keep 7FFFF000h, bit 31 = any of 7F87E000h.
+        gte.write_control(31, value);
+        let kept = value & 0x7FFF_F000;
+        prop_assert_eq!(gte.read_control(31), kept | if kept & 0x7F87_E000 != 0 { 1 << 31 } else { 0 });
+        // LZCS/LZCR: count leading bits equal to bit 31 one by one.
+        gte.write_data(30, value);
+        let top = value >> 31;
+        let count = (0..32).rev().take_while(|b| (value >> b) & 1 == top).count() as u32;
+        prop_assert_eq!(gte.read_data(31), count);
+        gte.write_data(31, 0);
+        prop_assert_eq!(gte.read_data(31), count);
+        // IRGB write expands into IR1-3; IRGB/ORGB read back live from IR1-3.
+        gte.write_data(28, value);
+        for n in 0..3 {
+            prop_assert_eq!(gte.read_data(9 + n), ((value >> (5 * n)) & 0x1F) << 7);
+        }
+        prop_assert_eq!(gte.read_data(28), value & 0x7FFF);
+        prop_assert_eq!(gte.read_data(29), value & 0x7FFF);
+        gte.write_data(29, !value);
+        prop_assert_eq!(gte.read_data(29), value & 0x7FFF);
+    }
+
+    /// IRGB/ORGB read of arbitrary IR values: clamp(IRn >> 7, 0, 1Fh) each.
+    #[test]
+    fn orgb_clamps(ir in prop::array::uniform3(any::<i16>())) {
+        let mut gte = Gte::new();
+        for (i, v) in ir.iter().enumerate() {
+            gte.write_data(9 + i, *v as u16 as u32);
+        }
+        let expect: u32 = (0..3).map(|n| (((ir[n] as i32) >> 7).clamp(0, 31) as u32) << (5 * n)).sum();
+        prop_assert_eq!(gte.read_data(29), expect);
+    }
+
+    /// SXYP: a write pushes the FIFO, a read returns SXY2.
+    #[test]
+    fn sxyp_fifo(a in any::<u32>(), b in any::<u32>(), c in any::<u32>(), d in any::<u32>()) {
+        let mut gte = Gte::new();
+        gte.write_data(12, a);
+        gte.write_data(13, b);
+        gte.write_data(14, c);
+        gte.write_data(15, d);
+        prop_assert_eq!([gte.read_data(12), gte.read_data(13), gte.read_data(14), gte.read_data(15)], [b, c, d, d]);
+    }
+}
+
+/// Undefined opcodes (docs/gte.md): FLAG cleared, every other register unchanged.
+#[test]
+fn undefined_opcodes_only_clear_flag() {
+    for op in 0..64u32 {
+        if Opcode::from_bits(op).is_some() {
+            continue;
+        }
+        let mut gte = Gte::new();
+        for r in 0..63 {
+            gte.write(r, 0x1234_5678u32.rotate_left(r as u32));
+        }
+        gte.write_control(31, 0xFFFF_FFFF);
+        let before: Vec<u32> = (0..63).map(|r| gte.read(r)).collect();
+        assert_eq!(gte.execute(op), None);
+        let after: Vec<u32> = (0..63).map(|r| gte.read(r)).collect();
+        assert_eq!(before, after, "opcode {op:02X}");
+        assert_eq!(gte.read_control(31), 0);
+    }
+}
+
+/// The H = 2*SZ3 boundary overflows (H < 2*SZ3 is required), and the largest non-overflow
+/// quotients are clamped to 1FFFFh without a flag (docs/gte.md).
+#[test]
+fn divide_boundaries() {
+    assert_eq!(unr_divide(0x1000, 0x800), (0x1FFFF, true));
+    let (q, of) = unr_divide(0x1001, 0x801);
+    assert!(!of);
+    // 0x1001 * 65536 / 0x801 = 131040.02: UNR within 3 units.
+    assert!((q as i64 - 131_040).abs() <= 3);
+    // gte.md §6: FE3Fh/7F20h reaches 20000h and is clamped, with no flag.
+    assert_eq!(unr_divide(0xFE3F, 0x7F20), (0x1FFFF, false));
+}
+
+/// Cycle counts (gte.md §1).
+#[test]
+fn cycle_counts() {
+    let expected = [
+        (0x01, 15),
+        (0x06, 8),
+        (0x0C, 6),
+        (0x10, 8),
+        (0x11, 8),
+        (0x12, 8),
+        (0x13, 19),
+        (0x14, 13),
+        (0x16, 44),
+        (0x1B, 17),
+        (0x1C, 11),
+        (0x1E, 14),
+        (0x20, 30),
+        (0x28, 5),
+        (0x29, 8),
+        (0x2A, 17),
+        (0x2D, 5),
+        (0x2E, 6),
+        (0x30, 23),
+        (0x3D, 5),
+        (0x3E, 5),
+        (0x3F, 39),
+    ];
+    for (op, cycles) in expected {
+        assert_eq!(gte::cycles(op), Some(cycles), "opcode {op:02X}");
+        assert_eq!(Gte::new().execute(op | 0x1F0_0000), Some(cycles));
+    }
+    assert_eq!(gte::cycles(0), None);
+}
