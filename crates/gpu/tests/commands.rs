@@ -1,0 +1,306 @@
+//! GP0 transfers and environment, GP1, GPUSTAT, packet assembly and ordering tables, on
+//! hand-worked cases (gpu.md §2, §8, §9).
+
+use gpu::ordering_table::{OrderingTable, OtError, walk_ram};
+use gpu::{Gpu, command_stream};
+use proptest::prelude::*;
+
+fn px(g: &Gpu, x: usize, y: usize) -> u16 {
+    g.vram().pixel(x, y)
+}
+
+/// Fill: x is rounded down to 16, width up to 16; w = 3F1h becomes 400h (the whole line);
+/// colour channels >> 3; the drawing area and E6 do not apply.
+#[test]
+fn fill_alignment_and_size() {
+    let mut g = Gpu::new();
+    g.gp0(0xE600_0003);
+    g.gp0_words(&[0x0200_00FF, 0x0001_0013, 0x0001_0001]); // x=13h -> 10h, w=1 -> 16
+    for x in 0..40 {
+        let want = if (16..32).contains(&x) { 0x1F } else { 0 };
+        assert_eq!(px(&g, x, 1), want, "x={x}");
+    }
+    g.gp0_words(&[0x0200_FF00, 0x0002_0000, 0x0001_03F1]);
+    assert_eq!(px(&g, 0, 2), 0x03E0);
+    assert_eq!(px(&g, 1023, 2), 0x03E0);
+    // Zero height draws nothing.
+    g.gp0_words(&[0x0200_FFFF, 0x0003_0000, 0x0000_0010]);
+    assert_eq!(px(&g, 0, 3), 0);
+}
+
+/// Fill wraps at the bottom of VRAM: y = 510, h = 4 covers lines 510, 511, 0, 1.
+#[test]
+fn fill_wraps() {
+    let mut g = Gpu::new();
+    g.gp0_words(&[0x0200_00FF, 510 << 16, 0x0004_0010]);
+    for y in [510, 511, 0, 1] {
+        assert_eq!(px(&g, 0, y), 0x1F, "y={y}");
+    }
+    assert_eq!(px(&g, 0, 2), 0);
+}
+
+/// CPU-to-VRAM wraps at the right edge; VRAM-to-CPU reads the same pixels back, two per
+/// word, low half first.
+#[test]
+fn cpu_transfers_wrap_and_round_trip() {
+    let mut g = Gpu::new();
+    g.gp0_words(&[
+        0xA000_0000,
+        5 << 16 | 1023,
+        0x0001_0003,
+        0x2222_1111,
+        0x0000_3333,
+    ]);
+    assert_eq!(px(&g, 1023, 5), 0x1111);
+    assert_eq!(px(&g, 0, 5), 0x2222);
+    assert_eq!(px(&g, 1, 5), 0x3333);
+    g.gp0_words(&[0xC000_0000, 5 << 16 | 1023, 0x0001_0003]);
+    assert_eq!(g.gpustat() >> 27 & 1, 1, "ready to send VRAM");
+    assert_eq!(g.gpuread(), 0x2222_1111);
+    assert_eq!(g.gpuread(), 0x0000_3333);
+    assert_eq!(g.gpustat() >> 27 & 1, 0);
+}
+
+/// E6 applies to CPU-to-VRAM: set-mask writes bit 15; check-mask skips protected pixels.
+#[test]
+fn mask_on_transfers() {
+    let mut g = Gpu::new();
+    g.gp0(0xE600_0001);
+    g.gp0_words(&[0xA000_0000, 0, 0x0001_0002, 0x0000_0000]);
+    assert_eq!(
+        px(&g, 0, 0),
+        0x8000,
+        "a 0 written with set-mask reads 8000h"
+    );
+    g.gp0(0xE600_0002);
+    g.gp0_words(&[0xA000_0000, 0, 0x0001_0002, 0x5555_1234]);
+    assert_eq!(px(&g, 0, 0), 0x8000, "protected");
+    assert_eq!(px(&g, 1, 0), 0x8000, "protected");
+}
+
+/// VRAM-to-VRAM copy: size 0 means the maximum; rows are read before they are written, so a
+/// copy one pixel to the right shifts a row without smearing.
+#[test]
+fn vram_copy() {
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xA000_0000, 0, 0x0001_0004, 0x0002_0001, 0x0004_0003]);
+    g.gp0_words(&[0x8000_0000, 0, 1, 0x0001_0004]);
+    let row: Vec<u16> = (0..6).map(|x| px(&g, x, 0)).collect();
+    assert_eq!(row, [1, 1, 2, 3, 4, 0]);
+    // Copy to (1000, 100) wraps at the right edge.
+    g.gp0_words(&[0x8000_0000, 0, 100 << 16 | 1022, 0x0001_0004]);
+    assert_eq!(
+        [
+            px(&g, 1022, 100),
+            px(&g, 1023, 100),
+            px(&g, 0, 100),
+            px(&g, 1, 100)
+        ],
+        [1, 1, 2, 3]
+    );
+}
+
+/// A command stream gives the same VRAM however its words are split between calls.
+#[test]
+fn packets_split_anywhere() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../fixtures/gpu/triangle.gpu"
+    ))
+    .unwrap();
+    let commands = command_stream::parse(&text).unwrap();
+    let mut whole = Gpu::new();
+    command_stream::run(&mut whole, &commands);
+    let words: Vec<(bool, u32)> = commands
+        .iter()
+        .flat_map(|c| {
+            c.words
+                .iter()
+                .map(move |w| (c.port == command_stream::Port::Gp1, *w))
+        })
+        .collect();
+    for chunk in [1, 2, 3, 5, 7, 13] {
+        let mut g = Gpu::new();
+        let mut pending = Vec::new();
+        for &(gp1, w) in &words {
+            if gp1 {
+                g.gp0_words(&pending);
+                pending.clear();
+                g.gp1(w);
+            } else {
+                pending.push(w);
+                if pending.len() == chunk {
+                    g.gp0_words(&pending);
+                    pending.clear();
+                }
+            }
+        }
+        g.gp0_words(&pending);
+        assert!(g.vram() == whole.vram(), "chunk {chunk}");
+    }
+}
+
+/// GPUSTAT mirrors E1 bits 0-10 in bits 0-10, E6 in bits 11-12, GP1(08h) in 16-22.
+#[test]
+fn gpustat_bits() {
+    let mut g = Gpu::new();
+    assert_eq!(
+        g.gpustat() & 0x1FFF_FFFF,
+        0x1480_2000,
+        "reset: display off, ready"
+    );
+    g.gp0(0xE100_07FF & !0x180 | 0x100); // depth 2, every other bit set
+    assert_eq!(g.gpustat() & 0x7FF, 0x7FF & !0x180 | 0x100);
+    g.gp0(0xE600_0003);
+    assert_eq!(g.gpustat() >> 11 & 3, 3);
+    g.gp1(0x0800_003F);
+    // Mode 3Fh: bits 0-5 map to GPUSTAT 17-22; bit 6 (368 wide) is clear, so bit 16 is 0.
+    assert_eq!(g.gpustat() >> 16 & 0x7F, 0b111_1110);
+    g.gp1(0x0300_0000);
+    assert_eq!(g.gpustat() >> 23 & 1, 0);
+    g.gp1(0x0400_0002);
+    assert_eq!(g.gpustat() >> 29 & 3, 2);
+}
+
+/// Display area width and height from GP1(08h), start from GP1(05h).
+#[test]
+fn display_area_modes() {
+    let mut g = Gpu::new();
+    for (mode, w) in [(0, 256), (1, 320), (2, 512), (3, 640), (0x40, 368)] {
+        g.gp1(0x0800_0000 | mode);
+        assert_eq!(g.display_area().width, w);
+        assert_eq!(g.display_area().height, 240);
+    }
+    g.gp1(0x0800_0024 | 3);
+    assert_eq!(
+        (g.display_area().width, g.display_area().height),
+        (640, 480)
+    );
+    g.gp1(0x0800_0011);
+    assert!(g.display_area().color_24bit);
+    g.gp1(0x0500_0000 | 256 << 10 | 320);
+    assert_eq!((g.display_area().x, g.display_area().y), (320, 256));
+}
+
+/// GP1(10h) latches E2-E5 values and the version into GPUREAD.
+#[test]
+fn gpu_info() {
+    let mut g = Gpu::new();
+    g.gp0(0xE200_1234 & 0xE20F_FFFF);
+    g.gp0(0xE300_0000 | 3 << 10 | 4);
+    g.gp0(0xE400_0000 | 200 << 10 | 300);
+    g.gp0(0xE500_0000 | 0x7FF << 11 | 5);
+    g.gp1(0x1000_0002);
+    assert_eq!(g.gpuread(), 0x1234);
+    g.gp1(0x1000_0003);
+    assert_eq!(g.gpuread(), 3 << 10 | 4);
+    g.gp1(0x1000_0004);
+    assert_eq!(g.gpuread(), 200 << 10 | 300);
+    g.gp1(0x1000_0005);
+    assert_eq!(g.gpuread(), 0x7FF << 11 | 5);
+    g.gp1(0x1000_0007);
+    assert_eq!(g.gpuread(), 2);
+}
+
+/// GP1(01h) abandons a partial packet: the next word starts a new command.
+#[test]
+fn command_buffer_reset() {
+    let mut g = Gpu::new();
+    g.gp0(0x2000_00FF); // start of a flat triangle
+    g.gp1(0x0100_0000);
+    g.gp0_words(&[0x0200_00FF, 0, 0x0001_0010]);
+    assert_eq!(px(&g, 0, 0), 0x1F);
+}
+
+/// Ordering table: packets come out far (high index) first; packets at one index come out
+/// most-recent-first; the walk ends at the terminator.
+#[test]
+fn ordering_table_order() {
+    let mut ot = OrderingTable::new(8, 64);
+    ot.insert(1, &[0x11]).unwrap();
+    ot.insert(6, &[0x61, 0x62]).unwrap();
+    ot.insert(1, &[0x12]).unwrap();
+    ot.insert(0, &[0x01]).unwrap();
+    let mut seen = Vec::new();
+    let stats = ot.walk(|w| seen.extend_from_slice(w)).unwrap();
+    assert_eq!(seen, [0x61, 0x62, 0x12, 0x11, 0x01]);
+    assert_eq!(stats.packets, 4);
+    assert_eq!(stats.nodes, 8 + 4);
+    ot.clear();
+    let mut n = 0;
+    ot.walk(|_| n += 1).unwrap();
+    assert_eq!(n, 0);
+    // DMA6 layout: entry 0 holds the end marker, entry i points at entry i-1.
+    assert_eq!(ot.ram()[0], 0x00FF_FFFF);
+    assert_eq!(ot.ram()[5], 16);
+}
+
+#[test]
+fn ordering_table_errors() {
+    let mut ot = OrderingTable::new(4, 4);
+    assert_eq!(
+        ot.insert(4, &[0]),
+        Err(OtError::IndexOutOfRange { index: 4, depth: 4 })
+    );
+    assert_eq!(ot.insert(0, &[0; 4]), Err(OtError::PrimitiveBufferFull));
+    assert_eq!(ot.insert(0, &[0; 256]), Err(OtError::PacketTooLong(256)));
+    // A link out of range, and a cycle.
+    assert_eq!(
+        walk_ram(&[0x0000_0040], 0, |_| {}),
+        Err(OtError::BadLink(0x40))
+    );
+    assert_eq!(
+        walk_ram(&[0x0000_0004, 0x0000_0000], 0, |_| {}),
+        Err(OtError::Cycle)
+    );
+    // A count running past the end.
+    assert_eq!(
+        walk_ram(&[0x05FF_FFFF], 0, |_| {}),
+        Err(OtError::BadLink(0))
+    );
+}
+
+/// Walking into a GPU draws in painter's order: a far red rectangle under a near green one.
+#[test]
+fn ordering_table_draws_far_first() {
+    let mut ot = OrderingTable::new(16, 64);
+    ot.insert(2, &[0x6000_FF00, 0, 0x0004_0004]).unwrap(); // near, green
+    ot.insert(10, &[0x6000_00FF, 0, 0x0008_0008]).unwrap(); // far, red
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    ot.walk_into(&mut g).unwrap();
+    assert_eq!(px(&g, 1, 1), 0x03E0);
+    assert_eq!(px(&g, 6, 6), 0x001F);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Any word stream on either port: no panic, VRAM keeps its size.
+    #[test]
+    fn random_streams_never_panic(words in prop::collection::vec((any::<bool>(), any::<u32>()), 0..400)) {
+        let mut g = Gpu::new();
+        g.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+        for (gp1, w) in words {
+            if gp1 && w >> 24 != 0x01 {
+                g.gp1(w);
+            } else {
+                g.gp0(w);
+            }
+            let _ = g.gpustat();
+        }
+        let _ = g.gpuread();
+        prop_assert_eq!(g.vram().as_slice().len(), 1024 * 512);
+    }
+
+    /// Random primitives built from valid command bytes with arbitrary coordinates.
+    #[test]
+    fn random_primitives_never_panic(op in 0x20u32..0x80, rest in prop::collection::vec(any::<u32>(), 12), e in any::<u32>()) {
+        let mut g = Gpu::new();
+        g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE100_0000 | (e & 0x3FFF), 0xE200_0000 | (e >> 12 & 0xFFFFF)]);
+        g.gp0(op << 24 | (rest[0] & 0xFFFFFF));
+        g.gp0_words(&rest[1..]);
+        g.gp0(0x5555_5555);
+        prop_assert_eq!(g.vram().as_slice().len(), 1024 * 512);
+    }
+}
