@@ -1,0 +1,190 @@
+//! The `wobble` binary on the fixtures and on bad input.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn wobble(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("wobble-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+#[test]
+fn gte_replay_hardware_vectors() {
+    let f = root().join("fixtures/gte/ps1-tests-hw.jsonl");
+    let o = wobble(&["gte", "replay", f.to_str().unwrap()]);
+    assert!(o.status.success());
+    assert_eq!(stdout(&o).lines().last(), Some("1150 passed, 0 failed"));
+}
+
+#[test]
+fn gte_replay_reports_failures_and_bad_lines() {
+    let zeros = format!("[{}]", vec!["0"; 32].join(","));
+    // A register-only vector expecting all zeros fails on LZCR (reads 32 for LZCS = 0).
+    let text = format!(
+        "{{\"name\":\"z\",\"cmd\":null,\"in_data\":{zeros},\"in_ctrl\":{zeros},\"out_data\":{zeros},\"out_ctrl\":{zeros}}}\nnot json\n"
+    );
+    let f = tmp("bad.jsonl");
+    std::fs::write(&f, text).unwrap();
+    let o = wobble(&["gte", "replay", f.to_str().unwrap()]);
+    assert!(!o.status.success());
+    let out = stdout(&o);
+    assert!(out.contains("FAIL z (line 1)"), "{out}");
+    assert!(out.contains("LZCR"));
+    assert_eq!(out.lines().last(), Some("0 passed, 2 failed"));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("line 2: not JSON"));
+}
+
+#[test]
+fn gte_replay_emit_is_json() {
+    let f = tmp("emit.jsonl");
+    std::fs::write(
+        &f,
+        "{\"name\":\"w\",\"cmd\":null,\"writes\":[[30,4294967295]]}\n",
+    )
+    .unwrap();
+    let o = wobble(&["gte", "replay", "--emit", f.to_str().unwrap()]);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert_eq!(v["name"], "w");
+    assert_eq!(v["out_data"][31], 32); // LZCR of FFFFFFFFh
+}
+
+#[test]
+fn replay_writes_png_and_raw() {
+    let stream = root().join("fixtures/gpu/quad.gpu");
+    let png = tmp("quad.png");
+    let raw = tmp("quad.vram.bin");
+    let o = wobble(&[
+        "replay",
+        stream.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--raw",
+        raw.to_str().unwrap(),
+        "--expand",
+        "shift",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (1024, 512));
+    // With --expand shift the PNG equals the console capture.
+    let capture = image::open(root().join("fixtures/gpu/quad.vram.png"))
+        .unwrap()
+        .to_rgb8();
+    assert!(img == capture);
+    assert_eq!(std::fs::metadata(&raw).unwrap().len(), 1024 * 512 * 2);
+}
+
+#[test]
+fn replay_names_bad_line() {
+    let f = tmp("bad.gpu");
+    std::fs::write(&f, "gp0 e1000000\ngp9 1\n").unwrap();
+    let o = wobble(&[
+        "replay",
+        f.to_str().unwrap(),
+        "-o",
+        tmp("x.png").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("bad.gpu") && err.contains("line 2"), "{err}");
+}
+
+/// A hand-built raw VRAM: pixel (0,0) = red 31, (1,0) = green 16; a 4-bit texture page at
+/// (64,0) whose first halfword 0021h holds indices 1, 2, 0, 0 and a CLUT at (0,1) with
+/// entry 1 = blue 31, entry 2 = 7FFFh (white).
+fn raw_vram() -> PathBuf {
+    let mut v = vec![0u16; 1024 * 512];
+    v[0] = 0x001F;
+    v[1] = 16 << 5;
+    v[64] = 0x0021;
+    v[1024 + 1] = 0x7C00;
+    v[1024 + 2] = 0x7FFF;
+    let bytes: Vec<u8> = v.iter().flat_map(|p| p.to_le_bytes()).collect();
+    let f = tmp("hand.vram.bin");
+    std::fs::write(&f, bytes).unwrap();
+    f
+}
+
+#[test]
+fn dump_whole_and_display() {
+    let raw = raw_vram();
+    let png = tmp("dump.png");
+    let o = wobble(&["dump", raw.to_str().unwrap(), "-o", png.to_str().unwrap()]);
+    assert!(o.status.success());
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.get_pixel(0, 0).0, [255, 0, 0]);
+    assert_eq!(img.get_pixel(1, 0).0, [0, 132, 0]); // 16 << 3 | 16 >> 2
+    let o = wobble(&[
+        "dump",
+        raw.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--region",
+        "display",
+        "--display",
+        "1,0,256x240",
+    ]);
+    assert!(o.status.success());
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (256, 240));
+    assert_eq!(img.get_pixel(0, 0).0, [0, 132, 0]);
+}
+
+#[test]
+fn dump_texture_page() {
+    let raw = raw_vram();
+    let png = tmp("page.png");
+    let o = wobble(&[
+        "dump",
+        raw.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--texpage",
+        "64,0",
+        "--depth",
+        "4",
+        "--clut",
+        "0,1",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&png).unwrap().to_rgba8();
+    assert_eq!(img.dimensions(), (256, 256));
+    assert_eq!(img.get_pixel(0, 0).0, [0, 0, 255, 255]);
+    assert_eq!(img.get_pixel(1, 0).0, [255, 255, 255, 255]);
+    assert_eq!(
+        img.get_pixel(2, 0).0[3],
+        0,
+        "index 0 -> CLUT entry 0000h, transparent"
+    );
+}
+
+#[test]
+fn dump_rejects_wrong_size() {
+    let f = tmp("short.bin");
+    std::fs::write(&f, [0u8; 100]).unwrap();
+    let o = wobble(&[
+        "dump",
+        f.to_str().unwrap(),
+        "-o",
+        tmp("y.png").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("got 100"));
+}
