@@ -218,7 +218,8 @@ const fn build_sine() -> [i16; 1025] {
 }
 
 /// The typed face of a [`Gte`]: set-up calls load control registers, operations run
-/// commands with sf = 1 (results in 1.3.12) and lm = 0, as PS1 SDK transform calls do.
+/// commands with sf = 1 (results in 1.3.12) and the lm setting of the SDK's words
+/// ([`command`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Geometry {
     gte: Gte,
@@ -250,12 +251,18 @@ fn unpack_rgb(word: u32) -> Rgb {
     [word as u8, (word >> 8) as u8, (word >> 16) as u8]
 }
 
-/// The command word for an opcode with sf = 1, lm = 0.
+/// The command word the typed API issues: sf = 1; lm = 1 for the normal-colour lighting
+/// commands (negative light clamps to zero, as the SDK's NCS/NCT/NCCS/NCCT/NCDS/NCDT words
+/// do), lm = 0 otherwise.
 pub const fn command(op: Opcode) -> u32 {
+    let lm = matches!(
+        op,
+        Opcode::Ncs | Opcode::Nct | Opcode::Nccs | Opcode::Ncct | Opcode::Ncds | Opcode::Ncdt
+    );
     Command::build(
         op,
         true,
-        false,
+        lm,
         MatrixSel::Rotation,
         VectorSel::V0,
         TranslationSel::Translation,

@@ -199,7 +199,9 @@ proptest! {
             gte.write_data(2 * i, packed(v.x, v.y));
             gte.write_data(2 * i + 1, v.z as u16 as u32);
         }
-        gte.execute(opcode | SF);
+        // The SDK's lighting words set lm (bit 10); DPCS does not.
+        let lm = if op < 6 { 1 << 10 } else { 0 };
+        gte.execute(opcode | SF | lm);
         let fifo: Vec<[u8; 3]> = (20..23)
             .map(|r| {
                 let w = gte.read_data(r);

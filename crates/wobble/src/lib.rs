@@ -2,5 +2,11 @@
 //! GTE vector replay, command-stream replay and VRAM dumps.
 
 pub mod gte_replay;
+pub mod mesh;
+pub mod pipeline;
+pub mod quantize;
 pub mod render;
+pub mod scene;
+pub mod tessellate;
+pub mod vram_alloc;
 pub mod vram_image;

@@ -1,0 +1,344 @@
+//! Meshes: Wavefront OBJ loading (through `tobj`), built-in shapes, and scaling into the
+//! GTE's signed 16-bit vertex range.
+
+use std::fmt;
+use std::path::Path;
+
+/// One mesh vertex: position in mesh units, unit normal, texture coordinate in 0..1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MeshVertex {
+    /// Position.
+    pub position: [f64; 3],
+    /// Unit normal.
+    pub normal: [f64; 3],
+    /// Texture coordinate, (0,0) top-left, (1,1) bottom-right of the texture.
+    pub uv: [f64; 2],
+}
+
+/// A polygon: three or four vertex indices, counter-clockwise seen from the front.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MeshFace {
+    /// Vertex indices; the fourth is unused for triangles.
+    pub indices: [u32; 4],
+    /// Four vertices (a quad, drawn as one GP0 quad) or three.
+    pub quad: bool,
+}
+
+/// A polygon mesh.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Vertices.
+    pub vertices: Vec<MeshVertex>,
+    /// Faces.
+    pub faces: Vec<MeshFace>,
+}
+
+/// Why a mesh could not be loaded.
+#[derive(Debug)]
+pub struct MeshError {
+    /// The file or built-in name.
+    pub source: String,
+    /// What went wrong.
+    pub message: String,
+}
+
+impl fmt::Display for MeshError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.source, self.message)
+    }
+}
+
+impl std::error::Error for MeshError {}
+
+/// Largest coordinate a scaled vertex may have: the GTE takes signed 16-bit vertices.
+pub const MAX_COORDINATE: f64 = 32767.0;
+
+fn normalize(v: [f64; 3]) -> [f64; 3] {
+    let len = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if len > 0.0 {
+        [v[0] / len, v[1] / len, v[2] / len]
+    } else {
+        [0.0, 0.0, -1.0]
+    }
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+impl Mesh {
+    /// Number of triangles (a quad counts two).
+    pub fn triangle_count(&self) -> usize {
+        self.faces.iter().map(|f| if f.quad { 2 } else { 1 }).sum()
+    }
+
+    /// Largest absolute coordinate.
+    pub fn extent(&self) -> f64 {
+        self.vertices
+            .iter()
+            .flat_map(|v| v.position)
+            .fold(0.0, |m, c| m.max(c.abs()))
+    }
+
+    /// Check that positions times `scale` fit the GTE's 16-bit vertices; the error names the
+    /// largest scale that would.
+    pub fn check_scale(&self, name: &str, scale: f64) -> Result<(), MeshError> {
+        let extent = self.extent();
+        if !scale.is_finite() || scale <= 0.0 {
+            return Err(MeshError {
+                source: name.into(),
+                message: format!("scale must be a positive number, got {scale}"),
+            });
+        }
+        if extent * scale > MAX_COORDINATE {
+            return Err(MeshError {
+                source: name.into(),
+                message: format!(
+                    "coordinates up to {extent} times scale {scale} exceed the GTE's 16-bit \
+                     range (32767); use scale <= {:.6}",
+                    MAX_COORDINATE / extent
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    /// Load a Wavefront OBJ (all models in the file; faces with 3 or 4 vertices; larger
+    /// polygons are fanned into triangles). Missing normals are computed per face; missing
+    /// texture coordinates are 0.
+    pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
+        let err = |message: String| MeshError {
+            source: path.display().to_string(),
+            message,
+        };
+        let options = tobj::LoadOptions {
+            single_index: true,
+            triangulate: false,
+            ignore_points: true,
+            ignore_lines: true,
+        };
+        let (models, _materials) =
+            tobj::load_obj(path, &options).map_err(|e| err(e.to_string()))?;
+        let mut mesh = Mesh::default();
+        for model in models {
+            let m = &model.mesh;
+            let base = mesh.vertices.len() as u32;
+            let count = m.positions.len() / 3;
+            for i in 0..count {
+                // OBJ is Y-up looking down -Z; the GTE's camera space is Y-down looking down
+                // +Z: a half turn about X maps one onto the other.
+                let p = [
+                    m.positions[3 * i] as f64,
+                    -(m.positions[3 * i + 1] as f64),
+                    -(m.positions[3 * i + 2] as f64),
+                ];
+                if p.iter().any(|c| !c.is_finite()) {
+                    return Err(err(format!("vertex {} is not finite", i + 1)));
+                }
+                let normal = if m.normals.len() >= 3 * (i + 1) {
+                    normalize([
+                        m.normals[3 * i] as f64,
+                        -(m.normals[3 * i + 1] as f64),
+                        -(m.normals[3 * i + 2] as f64),
+                    ])
+                } else {
+                    [0.0; 3]
+                };
+                let uv = if m.texcoords.len() >= 2 * (i + 1) {
+                    // OBJ V runs up; texture rows run down.
+                    [
+                        m.texcoords[2 * i] as f64,
+                        1.0 - m.texcoords[2 * i + 1] as f64,
+                    ]
+                } else {
+                    [0.0, 0.0]
+                };
+                mesh.vertices.push(MeshVertex {
+                    position: p,
+                    normal,
+                    uv,
+                });
+            }
+            let arities: Vec<u32> = if m.face_arities.is_empty() {
+                vec![3; m.indices.len() / 3]
+            } else {
+                m.face_arities.clone()
+            };
+            let mut at = 0usize;
+            for n in arities {
+                let n = n as usize;
+                let Some(idx) = m.indices.get(at..at + n) else {
+                    return Err(err("face indices run past the index list".into()));
+                };
+                at += n;
+                if idx.iter().any(|&i| i as usize >= count) {
+                    return Err(err("face refers to a missing vertex".into()));
+                }
+                // OBJ front faces run counter-clockwise as seen; on the PS1 screen (Y down)
+                // a front face's first three vertices run clockwise as seen (NCLIP > 0), and a
+                // GP0 quad is ordered v0 v1 v2 v3 with v3 opposite v0.
+                let g = |k: usize| base + idx[k];
+                match n {
+                    0..=2 => {}
+                    3 => mesh.faces.push(MeshFace {
+                        indices: [g(0), g(2), g(1), 0],
+                        quad: false,
+                    }),
+                    4 => mesh.faces.push(MeshFace {
+                        indices: [g(0), g(3), g(1), g(2)],
+                        quad: true,
+                    }),
+                    _ => {
+                        for k in 1..n - 1 {
+                            mesh.faces.push(MeshFace {
+                                indices: [g(0), g(k + 1), g(k), 0],
+                                quad: false,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        if mesh.faces.is_empty() {
+            return Err(err("no faces".into()));
+        }
+        mesh.fill_missing_normals();
+        Ok(mesh)
+    }
+
+    /// Give vertices without a normal the normal of a face that uses them.
+    fn fill_missing_normals(&mut self) {
+        for f in self.faces.clone() {
+            let p = |k: usize| self.vertices[f.indices[k] as usize].position;
+            let n = normalize(cross(sub(p(1), p(0)), sub(p(2), p(0))));
+            let count = if f.quad { 4 } else { 3 };
+            for k in 0..count {
+                let v = &mut self.vertices[f.indices[k] as usize];
+                if v.normal == [0.0; 3] {
+                    v.normal = n;
+                }
+            }
+        }
+    }
+
+    /// An axis-aligned cube of half-size `half`, each face a quad with the whole texture.
+    /// Faces are stored in GP0 quad order (v0 v1 v2 v3 = top-left, top-right, bottom-left,
+    /// bottom-right as seen from outside).
+    pub fn cube(half: f64) -> Mesh {
+        let mut mesh = Mesh::default();
+        // (normal, right, down) for each face.
+        let faces: [([f64; 3], [f64; 3], [f64; 3]); 6] = [
+            ([0.0, 0.0, -1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+            ([0.0, 0.0, 1.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0]),
+            ([1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]),
+            ([-1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]),
+            ([0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+            ([0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]),
+        ];
+        for (n, r, d) in faces {
+            let base = mesh.vertices.len() as u32;
+            for (su, sv) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)] {
+                let a = 2.0 * su - 1.0;
+                let b = 2.0 * sv - 1.0;
+                let position = [
+                    half * (n[0] + a * r[0] + b * d[0]),
+                    half * (n[1] + a * r[1] + b * d[1]),
+                    half * (n[2] + a * r[2] + b * d[2]),
+                ];
+                mesh.vertices.push(MeshVertex {
+                    position,
+                    normal: n,
+                    uv: [su, sv],
+                });
+            }
+            mesh.faces.push(MeshFace {
+                indices: [base, base + 1, base + 2, base + 3],
+                quad: true,
+            });
+        }
+        mesh
+    }
+
+    /// A flat square grid in the XZ plane facing -Y (up, with Y pointing down as on screen),
+    /// `cells` x `cells` quads over `size` units, the texture repeated `repeat` times across.
+    pub fn grid(size: f64, cells: u32, repeat: f64) -> Mesh {
+        let cells = cells.clamp(1, 256);
+        let mut mesh = Mesh::default();
+        let n = cells + 1;
+        for j in 0..n {
+            for i in 0..n {
+                let s = i as f64 / cells as f64;
+                let t = j as f64 / cells as f64;
+                mesh.vertices.push(MeshVertex {
+                    position: [size * (s - 0.5), 0.0, size * (0.5 - t)],
+                    normal: [0.0, -1.0, 0.0],
+                    uv: [s * repeat, t * repeat],
+                });
+            }
+        }
+        for j in 0..cells {
+            for i in 0..cells {
+                let a = j * n + i;
+                mesh.faces.push(MeshFace {
+                    indices: [a, a + 1, a + n, a + n + 1],
+                    quad: true,
+                });
+            }
+        }
+        mesh
+    }
+
+    /// A UV sphere with `rings` x `segments` quads (triangles at the poles).
+    pub fn sphere(radius: f64, rings: u32, segments: u32) -> Mesh {
+        let (rings, segments) = (rings.clamp(2, 128), segments.clamp(3, 256));
+        let mut mesh = Mesh::default();
+        for r in 0..=rings {
+            let theta = std::f64::consts::PI * r as f64 / rings as f64;
+            for s in 0..=segments {
+                let phi = 2.0 * std::f64::consts::PI * s as f64 / segments as f64;
+                let n = [
+                    theta.sin() * phi.cos(),
+                    -theta.cos(),
+                    theta.sin() * phi.sin(),
+                ];
+                mesh.vertices.push(MeshVertex {
+                    position: [radius * n[0], radius * n[1], radius * n[2]],
+                    normal: n,
+                    uv: [s as f64 / segments as f64, r as f64 / rings as f64],
+                });
+            }
+        }
+        let w = segments + 1;
+        for r in 0..rings {
+            for s in 0..segments {
+                let a = r * w + s;
+                let (tl, tr, bl, br) = (a, a + 1, a + w, a + w + 1);
+                if r == 0 {
+                    mesh.faces.push(MeshFace {
+                        indices: [tl, br, bl, 0],
+                        quad: false,
+                    });
+                } else if r == rings - 1 {
+                    mesh.faces.push(MeshFace {
+                        indices: [tl, tr, bl, 0],
+                        quad: false,
+                    });
+                } else {
+                    mesh.faces.push(MeshFace {
+                        indices: [tl, tr, bl, br],
+                        quad: true,
+                    });
+                }
+            }
+        }
+        mesh
+    }
+}

@@ -1,0 +1,535 @@
+//! The PS1 rendering pipeline, using only the console's mechanisms: GTE transforms (RTPT/RTPS,
+//! integer-snapped screen positions), NCLIP back-face culling, whole-polygon clipping,
+//! optional GTE lighting (NCCT/NCCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
+//! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
+
+use crate::scene::Scene;
+use crate::tessellate::{PreparedFace, PreparedVertex, tessellate};
+use crate::vram_alloc::{Placement, VramAllocator, VramFull};
+use gpu::ordering_table::OrderingTable;
+use gpu::{DisplayArea, Gpu};
+use gte::typed::{Geometry, I16F16, Matrix, Projection, Translation, Vector3};
+use gte::{DivideMode, Flag};
+use std::fmt;
+use std::time::{Duration, Instant};
+
+/// Ordering-table entries.
+pub const OT_DEPTH: usize = 2048;
+/// OTZ to OT index: OTZ (the mean SZ) >> this.
+pub const OT_SHIFT: u32 = 3;
+
+/// Knobs, all defaulting to what the scene says and to hardware behaviour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PipelineOptions {
+    /// Override every object's tessellation level (0..=4).
+    pub tessellation: Option<u8>,
+    /// Override the scene's dithering.
+    pub dither: Option<bool>,
+    /// GTE divide (hardware UNR by default).
+    pub divide_mode: DivideMode,
+}
+
+/// Why a renderer could not be built.
+#[derive(Debug)]
+pub enum PipelineError {
+    /// Textures do not fit VRAM.
+    Vram(VramFull),
+    /// The scene is inconsistent.
+    Scene(String),
+}
+
+impl fmt::Display for PipelineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            PipelineError::Vram(e) => write!(f, "{e}"),
+            PipelineError::Scene(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for PipelineError {}
+
+/// What one frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Polygons submitted (after tessellation).
+    pub polygons: usize,
+    /// Polygons linked into the ordering table and drawn.
+    pub drawn: usize,
+    /// Back faces removed by NCLIP.
+    pub culled: usize,
+    /// Polygons entirely off screen.
+    pub offscreen: usize,
+    /// Polygons dropped whole: a vertex behind the near plane (SZ3 or divide overflow flag),
+    /// a saturated SX/SY, or an extent the GPU would drop.
+    pub dropped: usize,
+    /// Time in GTE work (transform, project, cull, light, AVSZ).
+    pub gte: Duration,
+    /// Time building packets and linking them into the ordering table.
+    pub ot: Duration,
+    /// Time in the GPU (environment, OT walk, rasterization).
+    pub gpu: Duration,
+}
+
+impl FrameStats {
+    /// Add another frame's counts and times.
+    pub fn accumulate(&mut self, other: &FrameStats) {
+        self.polygons += other.polygons;
+        self.drawn += other.drawn;
+        self.culled += other.culled;
+        self.offscreen += other.offscreen;
+        self.dropped += other.dropped;
+        self.gte += other.gte;
+        self.ot += other.ot;
+        self.gpu += other.gpu;
+    }
+}
+
+/// An object ready to draw: faces in GTE units with texel coordinates.
+#[derive(Clone, Debug)]
+struct PreparedObject {
+    faces: Vec<PreparedFace>,
+    texture: Option<(Placement, u32)>,
+}
+
+/// A polygon after the GTE stage, waiting for its packet.
+#[derive(Clone, Copy, Debug, Default)]
+struct ProjectedFace {
+    xy: [(i16, i16); 4],
+    color: [[u8; 3]; 4],
+    uv: [(u8, u8); 4],
+    quad: bool,
+    ot_index: u16,
+    texture: Option<(u32, u32)>,
+    blend: Option<u8>,
+}
+
+const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
+    .union(Flag::SX2_SATURATED)
+    .union(Flag::SY2_SATURATED)
+    .union(Flag::SZ3_OTZ_SATURATED);
+
+/// Degrees to 1/4096 turn.
+fn angle(deg: f64) -> i32 {
+    (deg.rem_euclid(360.0) * 4096.0 / 360.0).round() as i32
+}
+
+fn to_fixed(v: f64) -> i16 {
+    (v * 4096.0).round().clamp(-32768.0, 32767.0) as i16
+}
+
+fn to_i16(v: f64) -> i16 {
+    v.round().clamp(-32768.0, 32767.0) as i16
+}
+
+fn vector(p: [f64; 3]) -> Vector3 {
+    Vector3 {
+        x: to_i16(p[0]),
+        y: to_i16(p[1]),
+        z: to_i16(p[2]),
+    }
+}
+
+fn normal(n: [f64; 3]) -> Vector3 {
+    Vector3 {
+        x: to_fixed(n[0]),
+        y: to_fixed(n[1]),
+        z: to_fixed(n[2]),
+    }
+}
+
+/// Apply a 1.3.12 matrix to a vector in f64 (CPU-side set-up only).
+fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
+    let b = m.to_bits();
+    let row = |r: usize| (0..3).map(|c| b[r][c] as f64 * v[c]).sum::<f64>() / 4096.0;
+    [row(0), row(1), row(2)]
+}
+
+/// Prepare an object's faces: scale, per-face texel coordinates (each face's texture
+/// coordinates shifted by whole texture repeats to start in the first repeat, then scaled to
+/// 0..size-1 texels and clamped to 255), tessellation.
+fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
+    let o = &scene.objects[index];
+    let mesh = &scene.meshes[o.mesh].mesh;
+    let size = o
+        .texture
+        .and_then(|t| scene.textures.get(t))
+        .map_or((1.0, 1.0), |t| {
+            (t.texture.width as f64 - 1.0, t.texture.height as f64 - 1.0)
+        });
+    let mut faces = Vec::with_capacity(mesh.faces.len());
+    for f in &mesh.faces {
+        let count = if f.quad { 4 } else { 3 };
+        let Some(vs) = (0..count)
+            .map(|k| mesh.vertices.get(f.indices[k] as usize))
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let min_u = vs
+            .iter()
+            .map(|v| v.uv[0])
+            .fold(f64::INFINITY, f64::min)
+            .floor();
+        let min_v = vs
+            .iter()
+            .map(|v| v.uv[1])
+            .fold(f64::INFINITY, f64::min)
+            .floor();
+        let mut face = PreparedFace {
+            quad: f.quad,
+            ..Default::default()
+        };
+        for (slot, v) in face.v.iter_mut().zip(&vs) {
+            *slot = PreparedVertex {
+                position: v.position.map(|c| c * o.scale),
+                normal: v.normal,
+                uv: [
+                    ((v.uv[0] - min_u) * size.0).clamp(0.0, 255.0),
+                    ((v.uv[1] - min_v) * size.1).clamp(0.0, 255.0),
+                ],
+            };
+        }
+        faces.push(face);
+    }
+    tessellate(faces, level)
+}
+
+/// Renders a scene frame by frame into a GPU's VRAM.
+pub struct Renderer {
+    scene: Scene,
+    options: PipelineOptions,
+    objects: Vec<PreparedObject>,
+    gpu: Gpu,
+    ot: OrderingTable,
+    geometry: Geometry,
+    scratch: Vec<ProjectedFace>,
+    display: DisplayArea,
+}
+
+impl Renderer {
+    /// Prepare a scene: tessellate meshes, place and upload textures (GP0 A0h), set up the
+    /// GPU's display.
+    pub fn new(scene: Scene, options: PipelineOptions) -> Result<Renderer, PipelineError> {
+        scene.validate().map_err(PipelineError::Scene)?;
+        let (width, height) = (scene.screen.width, scene.screen.height);
+        let mut gpu = Gpu::new();
+        gpu.gp1(0x0000_0000);
+        let mut alloc = VramAllocator::new(width, height);
+        let mut placements = Vec::new();
+        for t in &scene.textures {
+            let p = alloc
+                .place(&t.name, &t.texture)
+                .map_err(PipelineError::Vram)?;
+            upload(
+                &mut gpu,
+                p.page_x,
+                p.page_y,
+                t.texture.row_halfwords(),
+                &t.texture.halfwords(),
+            );
+            if let Some((x, y)) = p.clut {
+                upload(&mut gpu, x, y, t.texture.clut.len(), &t.texture.clut);
+            }
+            placements.push(p);
+        }
+        let mut objects = Vec::new();
+        let mut capacity = 0;
+        for (i, o) in scene.objects.iter().enumerate() {
+            let level = options.tessellation.unwrap_or(o.tessellation).min(4);
+            let faces = prepare(&scene, i, level);
+            capacity += faces.len();
+            let texture = o.texture.and_then(|t| {
+                let depth = scene.textures.get(t)?.texture.depth.bits();
+                Some((*placements.get(t)?, depth))
+            });
+            objects.push(PreparedObject { faces, texture });
+        }
+        // GP1: display mode for the width, 240 lines, display on.
+        let mode = match width {
+            256 => 0,
+            320 => 1,
+            512 => 2,
+            640 => 3,
+            _ => 0x40,
+        };
+        gpu.gp1(0x0800_0000 | mode);
+        gpu.gp1(0x0300_0000);
+        let display = DisplayArea {
+            x: 0,
+            y: 0,
+            width,
+            height,
+            color_24bit: false,
+        };
+        let mut geometry = Geometry::new();
+        geometry.set_divide_mode(options.divide_mode);
+        Ok(Renderer {
+            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
+            scratch: Vec::with_capacity(capacity),
+            scene,
+            options,
+            objects,
+            gpu,
+            geometry,
+            display,
+        })
+    }
+
+    /// The scene being rendered.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The GPU (VRAM holds both buffers and the textures).
+    pub fn gpu(&self) -> &Gpu {
+        &self.gpu
+    }
+
+    /// The display area of the last frame drawn.
+    pub fn display_area(&self) -> DisplayArea {
+        self.display
+    }
+
+    /// The last frame as an RGB image.
+    pub fn image(&self) -> image::RgbImage {
+        crate::vram_image::display_image(
+            self.gpu.vram().as_slice(),
+            self.display,
+            crate::vram_image::Expand::Replicate,
+        )
+    }
+
+    /// Render frame `frame` (objects at their frame-`frame` rotation) into the back buffer
+    /// and display it.
+    pub fn render_frame(&mut self, frame: u32) -> FrameStats {
+        let mut stats = FrameStats::default();
+        let t0 = Instant::now();
+        self.gte_stage(frame, &mut stats);
+        let t1 = Instant::now();
+        self.ot_stage(&mut stats);
+        let t2 = Instant::now();
+        self.gpu_stage(frame);
+        let t3 = Instant::now();
+        stats.gte = t1 - t0;
+        stats.ot = t2 - t1;
+        stats.gpu = t3 - t2;
+        stats
+    }
+
+    fn gte_stage(&mut self, frame: u32, stats: &mut FrameStats) {
+        self.scratch.clear();
+        let scene = &self.scene;
+        let (w, h) = (scene.screen.width as i32, scene.screen.height as i32);
+        let cam = &scene.camera;
+        let view = Matrix::rotation(
+            angle(cam.rotation[0]),
+            angle(cam.rotation[1]),
+            angle(cam.rotation[2]),
+        );
+        let g = &mut self.geometry;
+        g.set_projection(&Projection {
+            offset_x: I16F16::from_num(w / 2),
+            offset_y: I16F16::from_num(h / 2),
+            h: cam.h,
+            ..Projection::default()
+        });
+        for (object, prepared) in scene.objects.iter().zip(&self.objects) {
+            let f = frame as f64;
+            let rot = Matrix::rotation(
+                angle(object.rotation[0] + object.spin[0] * f),
+                angle(object.rotation[1] + object.spin[1] * f),
+                angle(object.rotation[2] + object.spin[2] * f),
+            );
+            let relative = [
+                object.position[0] - cam.position[0],
+                object.position[1] - cam.position[1],
+                object.position[2] - cam.position[2],
+            ];
+            let t = apply(&view, relative);
+            let clamp32 = |v: f64| v.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32;
+            g.set_rotation(&view.multiply(&rot));
+            g.set_translation(Translation {
+                x: clamp32(t[0]),
+                y: clamp32(t[1]),
+                z: clamp32(t[2]),
+            });
+            if let Some(light) = &scene.light {
+                // LLM row = -(light direction) in object space: (R^T (-d))^T.
+                let d = light.direction;
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-9);
+                let to_light = [-d[0] / len, -d[1] / len, -d[2] / len];
+                let rb = rot.to_bits();
+                let obj: [f64; 3] = std::array::from_fn(|c| {
+                    (0..3).map(|r| rb[r][c] as f64 * to_light[r]).sum::<f64>() / 4096.0
+                });
+                let zero = [0i16; 3];
+                g.set_light_matrix(&Matrix::from_bits([obj.map(to_fixed), zero, zero]));
+                let col = light.color.map(|c| to_fixed(c as f64 / 255.0));
+                g.set_light_colors(&Matrix::from_bits([
+                    [col[0], 0, 0],
+                    [col[1], 0, 0],
+                    [col[2], 0, 0],
+                ]));
+                g.set_background_color(light.ambient.map(|c| (c as i32 * 4096) / 255));
+            }
+            let blend = object.blend;
+            let texture = prepared.texture.map(|(p, depth)| {
+                let tpage = p.texpage(depth) | (blend.unwrap_or(0) as u32) << 5;
+                (p.clut_attr(), tpage)
+            });
+            for face in &prepared.faces {
+                stats.polygons += 1;
+                let v = face.v;
+                let p = g.project_triangle([
+                    vector(v[0].position),
+                    vector(v[1].position),
+                    vector(v[2].position),
+                ]);
+                let mut flag = p.flag;
+                let area = g.nclip_current();
+                let mut xy = [p.xy[0], p.xy[1], p.xy[2], (0, 0)];
+                let mut sz = [p.sz[0], p.sz[1], p.sz[2], 0];
+                if face.quad {
+                    let q = g.project(vector(v[3].position));
+                    flag = flag.union(q.flag);
+                    xy[3] = (q.x, q.y);
+                    sz[3] = q.sz;
+                }
+                if flag.intersects(DROP_FLAGS) {
+                    stats.dropped += 1;
+                    continue;
+                }
+                if area <= 0 {
+                    stats.culled += 1;
+                    continue;
+                }
+                let n = if face.quad { 4 } else { 3 };
+                let xs = xy[..n].iter().map(|p| p.0 as i32);
+                let ys = xy[..n].iter().map(|p| p.1 as i32);
+                let (min_x, max_x) = (xs.clone().min().unwrap_or(0), xs.max().unwrap_or(0));
+                let (min_y, max_y) = (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0));
+                if max_x < 0 || min_x >= w || max_y < 0 || min_y >= h {
+                    stats.offscreen += 1;
+                    continue;
+                }
+                if max_x - min_x >= 1024 || max_y - min_y >= 512 {
+                    stats.dropped += 1;
+                    continue;
+                }
+                let mut color = [object.color; 4];
+                if scene.light.is_some() {
+                    let c = g.normal_color_color_triple(
+                        [
+                            normal(v[0].normal),
+                            normal(v[1].normal),
+                            normal(v[2].normal),
+                        ],
+                        object.color,
+                    );
+                    color[..3].copy_from_slice(&c);
+                    if face.quad {
+                        color[3] = g.normal_color_color(normal(v[3].normal), object.color);
+                    }
+                }
+                let otz = if face.quad {
+                    g.average_z4(sz)
+                } else {
+                    g.average_z3([sz[0], sz[1], sz[2]])
+                };
+                let uv = v.map(|p| (p.uv[0].round() as u8, p.uv[1].round() as u8));
+                self.scratch.push(ProjectedFace {
+                    xy,
+                    color,
+                    uv,
+                    quad: face.quad,
+                    ot_index: ((otz as u32 >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
+                    texture,
+                    blend,
+                });
+            }
+        }
+    }
+
+    fn ot_stage(&mut self, stats: &mut FrameStats) {
+        self.ot.clear();
+        let mut packet = [0u32; 12];
+        for f in &self.scratch {
+            let n = if f.quad { 4 } else { 3 };
+            let mut op = 0x30u32 | if f.quad { 0x08 } else { 0 };
+            if f.texture.is_some() {
+                op |= 0x04;
+            }
+            if f.blend.is_some() {
+                op |= 0x02;
+            }
+            let mut len = 0;
+            for i in 0..n {
+                let [r, g, b] = f.color[i];
+                let rgb = r as u32 | (g as u32) << 8 | (b as u32) << 16;
+                packet[len] = if i == 0 { op << 24 | rgb } else { rgb };
+                len += 1;
+                let (x, y) = f.xy[i];
+                packet[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
+                len += 1;
+                if let Some((clut, tpage)) = f.texture {
+                    let (u, v) = f.uv[i];
+                    let attr = match i {
+                        0 => clut,
+                        1 => tpage,
+                        _ => 0,
+                    };
+                    packet[len] = u as u32 | (v as u32) << 8 | attr << 16;
+                    len += 1;
+                }
+            }
+            if self.ot.insert(f.ot_index as usize, &packet[..len]).is_ok() {
+                stats.drawn += 1;
+            }
+        }
+    }
+
+    fn gpu_stage(&mut self, frame: u32) {
+        let screen = self.scene.screen;
+        let buffer_y = (frame % 2) * screen.height as u32;
+        let (w, h) = (screen.width as u32, screen.height as u32);
+        let dither = self.options.dither.unwrap_or(screen.dither);
+        let [r, g, b] = screen.background;
+        let gpu = &mut self.gpu;
+        gpu.gp0_words(&[
+            0xE100_0000 | (dither as u32) << 9,
+            0xE200_0000,
+            0xE300_0000 | buffer_y << 10,
+            0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
+            0xE500_0000 | (buffer_y & 0x7FF) << 11,
+            0xE600_0000,
+            0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
+            buffer_y << 16,
+            h << 16 | w,
+        ]);
+        // Bad links cannot occur in a table this renderer built; a walk error leaves the
+        // frame partly drawn rather than stopping the renderer.
+        let _ = self.ot.walk_into(gpu);
+        gpu.gp1(0x0500_0000 | buffer_y << 10);
+        self.display = gpu.display_area();
+        self.display.height = screen.height;
+    }
+}
+
+/// Upload halfwords into a `width`-halfword-wide VRAM rectangle at (x, y) with GP0(A0h).
+fn upload(gpu: &mut Gpu, x: u16, y: u16, width: usize, halfwords: &[u16]) {
+    if width == 0 || halfwords.is_empty() {
+        return;
+    }
+    let height = halfwords.len() / width;
+    gpu.gp0_words(&[
+        0xA000_0000,
+        (y as u32) << 16 | x as u32,
+        (height as u32) << 16 | width as u32,
+    ]);
+    for pair in halfwords.chunks(2) {
+        let lo = pair[0] as u32;
+        let hi = pair.get(1).copied().unwrap_or(0) as u32;
+        gpu.gp0(hi << 16 | lo);
+    }
+}

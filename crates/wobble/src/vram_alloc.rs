@@ -1,0 +1,168 @@
+//! Placement of textures and CLUTs in VRAM beside two display buffers (gpu.md §7).
+//!
+//! Layout: display buffers at (0, 0) and (0, height) (`width` x `height` each, height at
+//! most 256); texture pages (64-halfword columns, rows at y = 0 and 256) to the right of the
+//! buffers; CLUTs in the lines below the second buffer (x multiple of 16).
+
+use crate::quantize::Texture;
+use std::fmt;
+
+/// Where a texture and its CLUT went.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Placement {
+    /// Texture page left edge (multiple of 64).
+    pub page_x: u16,
+    /// Texture page top (0 or 256).
+    pub page_y: u16,
+    /// CLUT position (x multiple of 16), when the texture has one.
+    pub clut: Option<(u16, u16)>,
+}
+
+impl Placement {
+    /// The texpage attribute (GP0 polygon vertex 1 UV word, high half) without blend bits.
+    pub fn texpage(&self, depth_bits: u32) -> u32 {
+        (self.page_x as u32 / 64) | ((self.page_y as u32 / 256) << 4) | (depth_bits << 7)
+    }
+
+    /// The CLUT attribute (vertex 0 UV word, high half).
+    pub fn clut_attr(&self) -> u32 {
+        self.clut
+            .map_or(0, |(x, y)| (x as u32 / 16) | ((y as u32) << 6))
+    }
+}
+
+/// VRAM is full.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct VramFull {
+    /// What did not fit.
+    pub what: String,
+}
+
+impl fmt::Display for VramFull {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "VRAM full: no room for {}", self.what)
+    }
+}
+
+impl std::error::Error for VramFull {}
+
+/// Hands out texture pages and CLUT slots.
+#[derive(Clone, Debug)]
+pub struct VramAllocator {
+    first_column: u16,
+    next: u16,
+    clut_x: u16,
+    clut_y: u16,
+    clut_right: u16,
+    clut_bottom: u16,
+}
+
+impl VramAllocator {
+    /// An allocator for display buffers of `width` x `height` (two, stacked).
+    pub fn new(width: u16, height: u16) -> Self {
+        let first_column = width.div_ceil(64);
+        Self {
+            first_column,
+            next: 0,
+            clut_x: 0,
+            clut_y: (2 * height).min(512),
+            clut_right: width.min(1024),
+            clut_bottom: 512,
+        }
+    }
+
+    /// Place a texture: its own page slot (one to four 64-halfword columns, one page row),
+    /// and a CLUT slot when it has a CLUT.
+    pub fn place(&mut self, name: &str, texture: &Texture) -> Result<Placement, VramFull> {
+        let columns = texture.row_halfwords().div_ceil(64).max(1) as u16;
+        let per_row = 16 - self.first_column;
+        let full = || VramFull {
+            what: format!("texture `{name}`"),
+        };
+        if columns > per_row {
+            return Err(full());
+        }
+        // Slots run along page row 0, then page row 1; a texture never straddles rows.
+        let mut row = self.next / per_row;
+        let mut col = self.next % per_row;
+        if col + columns > per_row {
+            row += 1;
+            col = 0;
+        }
+        if row > 1 {
+            return Err(full());
+        }
+        self.next = row * per_row + col + columns;
+        let page_x = (self.first_column + col) * 64;
+        let page_y = row * 256;
+        let clut = if texture.clut.is_empty() {
+            None
+        } else {
+            let len = texture.clut.len() as u16;
+            if self.clut_x + len > self.clut_right {
+                self.clut_x = 0;
+                self.clut_y += 1;
+            }
+            if self.clut_y >= self.clut_bottom || len > self.clut_right {
+                return Err(VramFull {
+                    what: format!("the CLUT of texture `{name}`"),
+                });
+            }
+            let at = (self.clut_x, self.clut_y);
+            self.clut_x += len;
+            Some(at)
+        };
+        Ok(Placement {
+            page_x,
+            page_y,
+            clut,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quantize::Depth;
+
+    fn tex(depth: Depth, width: u16) -> Texture {
+        Texture {
+            width,
+            height: 64,
+            depth,
+            texels: vec![0; width as usize * 64],
+            clut: vec![0; depth.clut_len()],
+        }
+    }
+
+    #[test]
+    fn pages_right_of_display_and_cluts_below() {
+        let mut a = VramAllocator::new(320, 240);
+        let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
+        assert_eq!((p.page_x, p.page_y, p.clut), (320, 0, Some((0, 480))));
+        let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+        assert_eq!((q.page_x, q.clut), (384, Some((16, 480))));
+        // 256-wide 15-bit needs four columns.
+        let r = a.place("c", &tex(Depth::Direct15, 256)).unwrap();
+        assert_eq!((r.page_x, r.clut), (448, None));
+    }
+
+    #[test]
+    fn reports_full() {
+        let mut a = VramAllocator::new(320, 240);
+        let mut placed = 0;
+        while a.place("t", &tex(Depth::Direct15, 256)).is_ok() {
+            placed += 1;
+        }
+        // 11 free columns per row: two 4-column textures per row, two rows; 3 columns of
+        // the second row are left for three 1-column textures.
+        assert_eq!(placed, 4);
+        for _ in 0..3 {
+            a.place("s", &tex(Depth::Clut4, 8)).unwrap();
+        }
+        assert_eq!(
+            a.place("x", &tex(Depth::Clut4, 8)).unwrap_err().what,
+            "texture `x`"
+        );
+    }
+}
