@@ -228,7 +228,10 @@ fn reference_texel(x: f64, y: f64, yaw: i32) -> (i32, i32) {
     let v = 63.0 * (q / 126.0 + 1.0) / 2.0;
     // Ties round up, as the GPU's +0.5 then truncation does; 1e-9 absorbs f64 error at
     // exact half texels.
-    ((u + 0.5 + 1e-9).floor() as i32, (v + 0.5 + 1e-9).floor() as i32)
+    (
+        (u + 0.5 + 1e-9).floor() as i32,
+        (v + 0.5 + 1e-9).floor() as i32,
+    )
 }
 
 /// Largest texel error (in u or v) along the quad's split diagonal (v1 = TR to v2 = BL on

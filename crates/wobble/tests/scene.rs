@@ -1,0 +1,150 @@
+//! Scene files: the example loads and renders; malformed input is reported with the file
+//! and the line or field, never a panic.
+
+use std::path::PathBuf;
+use std::process::Command;
+use wobble::scene::Scene;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn write(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("wobble-scene-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn error(text: &str, name: &str) -> String {
+    Scene::load(&write(name, text)).unwrap_err().to_string()
+}
+
+#[test]
+fn example_scene_loads() {
+    let s = Scene::load(&root().join("fixtures/scenes/example.toml")).unwrap();
+    assert_eq!(s.objects.len(), 3);
+    assert_eq!(s.textures[0].texture.clut.len(), 16);
+    // The pyramid: a quad base and four triangles.
+    assert_eq!(s.meshes[0].mesh.faces.len(), 5);
+    assert_eq!(s.meshes[0].mesh.triangle_count(), 6);
+}
+
+#[test]
+fn syntax_error_names_file_and_line() {
+    let e = error("[screen]\nwidth = 320\nheight = \n", "syntax.toml");
+    assert!(e.contains("syntax.toml") && e.contains("line 3"), "{e}");
+}
+
+#[test]
+fn unknown_field_is_named() {
+    let e = error("[camera]\nfov = 90\n", "field.toml");
+    assert!(e.contains("field.toml") && e.contains("fov"), "{e}");
+}
+
+#[test]
+fn bad_values_are_refused() {
+    let e = error("[screen]\nwidth = 300\n", "w.toml");
+    assert!(e.contains("screen.width"), "{e}");
+    let e = error(
+        "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\ntessellation = 9\n",
+        "t.toml",
+    );
+    assert!(e.contains("tessellation"), "{e}");
+    let e = error("[[object]]\nmesh = \"nothing\"\n", "m.toml");
+    assert!(e.contains("no mesh named `nothing`"), "{e}");
+}
+
+#[test]
+fn missing_obj_names_the_file() {
+    let e = error(
+        "[[mesh]]\nname = \"a\"\nfile = \"does-not-exist.obj\"\n",
+        "obj.toml",
+    );
+    assert!(e.contains("does-not-exist.obj"), "{e}");
+}
+
+#[test]
+fn mesh_too_large_reports_the_scale_needed() {
+    // The cube's coordinates reach 1.0; scale 40000 exceeds 32767 and 32767 is the limit.
+    let e = error(
+        "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\nscale = 40000\n",
+        "big.toml",
+    );
+    assert!(e.contains("use scale <= 32767.000000"), "{e}");
+}
+
+#[test]
+fn oversized_png_is_refused() {
+    // A 300x10 PNG: wider than a texture page.
+    let img = image::RgbImage::new(300, 10);
+    let png = write("wide.png", "");
+    img.save(&png).unwrap();
+    let scene = format!(
+        "[[texture]]\nname = \"t\"\nfile = \"{}\"\n",
+        png.file_name().unwrap().to_str().unwrap()
+    );
+    let e = error(&scene, "wide.toml");
+    assert!(e.contains("wide.png") && e.contains("300x10"), "{e}");
+}
+
+#[test]
+fn render_command_on_example_and_bad_size() {
+    let out = write("ex.png", "");
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args([
+            "render",
+            root()
+                .join("fixtures/scenes/example.toml")
+                .to_str()
+                .unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--frames",
+            "3",
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        summary.starts_with("3 frame(s)") && summary.contains("polygons drawn"),
+        "{summary}"
+    );
+    assert_eq!(
+        image::open(&out).unwrap().to_rgb8().dimensions(),
+        (320, 240)
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(["render", "--size", "300x200", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--size"));
+}
+
+#[test]
+fn render_gif() {
+    let gif = write("anim.gif", "");
+    let out = write("last.png", "");
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args([
+            "render",
+            "--frames",
+            "4",
+            "--gif",
+            gif.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    use image::AnimationDecoder;
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(&gif).unwrap(),
+    ))
+    .unwrap();
+    assert_eq!(decoder.into_frames().count(), 4);
+}
