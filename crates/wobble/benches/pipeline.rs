@@ -1,10 +1,11 @@
-//! Whole-pipeline frames: the default scene and a 3,000-triangle textured, lit sphere at
-//! 320x240. Besides criterion's frame times, prints the mean split between the GTE stage,
+//! Whole-pipeline frames: the default scene (as is, and tessellated two levels) and a
+//! 3,000-triangle textured, lit sphere (half of it facing away) and a 3,042-triangle textured,
+//! lit wall (all of it drawn) at 320x240. Besides criterion's frame times, prints the mean split between the GTE stage,
 //! the OT build and the GPU over 500 frames.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use wobble::mesh::Mesh;
+use wobble::mesh::{Mesh, MeshFace, MeshVertex};
 use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
 use wobble::scene::{MeshAsset, Scene};
 
@@ -22,6 +23,63 @@ pub fn sphere_scene() -> Scene {
     sphere.position = [0.0, -60.0, -300.0];
     s.objects = vec![sphere];
     s
+}
+
+/// The default scene with its objects replaced by a textured, lit wall of 39 x 39 cells,
+/// each two triangles (3,042 triangles), facing the camera and filling the middle of the screen:
+/// every triangle is drawn.
+pub fn wall_scene() -> Scene {
+    let cells = 39u32;
+    let mut mesh = Mesh::default();
+    for j in 0..=cells {
+        for i in 0..=cells {
+            let (s, t) = (i as f64 / cells as f64, j as f64 / cells as f64);
+            mesh.vertices.push(MeshVertex {
+                position: [2.0 * s - 1.0, 2.0 * t - 1.0, 0.0],
+                normal: [0.0, 0.0, -1.0],
+                uv: [s * 8.0, t * 8.0],
+            });
+        }
+    }
+    let n = cells + 1;
+    for j in 0..cells {
+        for i in 0..cells {
+            let (tl, tr, bl, br) = (
+                j * n + i,
+                j * n + i + 1,
+                (j + 1) * n + i,
+                (j + 1) * n + i + 1,
+            );
+            for indices in [[tl, tr, bl, 0], [tr, br, bl, 0]] {
+                mesh.faces.push(MeshFace {
+                    indices,
+                    quad: false,
+                });
+            }
+        }
+    }
+    let mut s = Scene::default_scene();
+    s.meshes.push(MeshAsset {
+        name: "wall".into(),
+        mesh,
+    });
+    let mut wall = s.objects[0].clone();
+    wall.mesh = s.meshes.len() - 1;
+    wall.scale = 200.0;
+    wall.position = [0.0, -300.0, -900.0];
+    wall.rotation = [0.0; 3];
+    s.camera.rotation = [0.0; 3];
+    wall.spin = [0.0; 3];
+    s.objects = vec![wall];
+    s
+}
+
+/// A scene with every object at tessellation level `level` (polygons over 64 pixels split).
+fn tessellated(mut scene: Scene, level: u8) -> Scene {
+    for o in &mut scene.objects {
+        o.tessellation = level;
+    }
+    scene
 }
 
 fn split(name: &str, scene: Scene) {
@@ -49,7 +107,12 @@ fn frames(c: &mut Criterion) {
     let mut group = c.benchmark_group("frame");
     for (name, scene) in [
         ("default_scene", Scene::default_scene()),
+        (
+            "default_scene_tessellation_2",
+            tessellated(Scene::default_scene(), 2),
+        ),
         ("sphere_2976_triangles", sphere_scene()),
+        ("wall_3042_triangles", wall_scene()),
     ] {
         assert!(
             name != "sphere_2976_triangles"

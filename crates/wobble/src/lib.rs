@@ -1,6 +1,7 @@
 //! The wobble pipeline and tools: scene rendering through GTE -> ordering table -> GPU,
 //! GTE vector replay, command-stream replay and VRAM dumps.
 
+pub mod default_scene;
 pub mod gte_replay;
 pub mod mesh;
 pub mod pipeline;

@@ -74,6 +74,66 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
+/// The 1-based line of an OBJ file that `tobj` refused with `error` (tobj reports the kind
+/// of error only): the first `v`/`vn`/`vt` line whose numbers do not parse, or the first `f`
+/// line with a malformed or out-of-range index or fewer than three vertices.
+pub fn locate_obj_error(text: &str, error: tobj::LoadError) -> Option<usize> {
+    use tobj::LoadError as E;
+    let floats = |rest: &[&str], n: usize| {
+        rest.len() >= n && rest.iter().take(n).all(|t| t.parse::<f32>().is_ok())
+    };
+    let (mut positions, mut texcoords, mut normals) = (0i64, 0i64, 0i64);
+    for (number, line) in text.lines().enumerate() {
+        let mut tokens = line.split_whitespace();
+        let Some(keyword) = tokens.next() else {
+            continue;
+        };
+        let rest: Vec<&str> = tokens.collect();
+        let bad = match keyword {
+            "v" => {
+                positions += 1;
+                matches!(error, E::PositionParseError | E::ScalingByZeroError)
+                    && (!floats(&rest, 3) || rest.get(3).is_some_and(|w| w.parse() == Ok(0.0f32)))
+            }
+            "vt" => {
+                texcoords += 1;
+                matches!(error, E::TexcoordParseError) && !floats(&rest, 2)
+            }
+            "vn" => {
+                normals += 1;
+                matches!(error, E::NormalParseError) && !floats(&rest, 3)
+            }
+            "f" => {
+                let index_ok = |t: Option<&str>, count: i64, required: bool| match t {
+                    None | Some("") => !required,
+                    Some(t) => t
+                        .parse::<i64>()
+                        .is_ok_and(|i| (i > 0 && i <= count) || (i < 0 && -i <= count)),
+                };
+                matches!(
+                    error,
+                    E::FaceParseError
+                        | E::InvalidPolygon
+                        | E::FaceVertexOutOfBounds
+                        | E::FaceTexCoordOutOfBounds
+                        | E::FaceNormalOutOfBounds
+                ) && (rest.len() < 3
+                    || rest.iter().any(|v| {
+                        let mut parts = v.split('/');
+                        !(index_ok(parts.next(), positions, true)
+                            && index_ok(parts.next(), texcoords, false)
+                            && index_ok(parts.next(), normals, false))
+                    }))
+            }
+            _ => false,
+        };
+        if bad {
+            return Some(number + 1);
+        }
+    }
+    None
+}
+
 impl Mesh {
     /// Number of triangles (a quad counts two).
     pub fn triangle_count(&self) -> usize {
@@ -125,8 +185,15 @@ impl Mesh {
             ignore_points: true,
             ignore_lines: true,
         };
-        let (models, _materials) =
-            tobj::load_obj(path, &options).map_err(|e| err(e.to_string()))?;
+        let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| {
+            let line = std::fs::read_to_string(path)
+                .ok()
+                .and_then(|text| locate_obj_error(&text, e));
+            match line {
+                Some(n) => err(format!("line {n}: {e}")),
+                None => err(e.to_string()),
+            }
+        })?;
         let mut mesh = Mesh::default();
         for model in models {
             let m = &model.mesh;

@@ -1,14 +1,15 @@
 //! The PS1 rendering pipeline, using only the console's mechanisms: GTE transforms (RTPT/RTPS,
 //! integer-snapped screen positions), NCLIP back-face culling, whole-polygon clipping,
-//! optional GTE lighting (NCCT/NCCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
+//! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
 //! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
 
+use crate::quantize::Depth;
 use crate::scene::Scene;
-use crate::tessellate::{PreparedFace, PreparedVertex, tessellate};
+use crate::tessellate::{MAX_LEVEL, PreparedFace, PreparedVertex, SplitStack, UV_FRACTION_BITS};
 use crate::vram_alloc::{Placement, VramAllocator, VramFull};
 use gpu::ordering_table::OrderingTable;
 use gpu::{DisplayArea, Gpu};
-use gte::typed::{Geometry, I16F16, Matrix, Projection, Translation, Vector3};
+use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Flag};
 use std::fmt;
 use std::time::{Duration, Instant};
@@ -18,15 +19,37 @@ pub const OT_DEPTH: usize = 2048;
 /// OTZ to OT index: OTZ (the mean SZ) >> this.
 pub const OT_SHIFT: u32 = 3;
 
+/// Most polygons one frame can draw: sizes the scratch list and the primitive buffer (13
+/// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
+pub const MAX_POLYGONS: usize = 1 << 17;
+
+/// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
+/// are split while their object's tessellation level allows.
+pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
+
 /// Knobs, all defaulting to what the scene says and to hardware behaviour.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PipelineOptions {
     /// Override every object's tessellation level (0..=4).
     pub tessellation: Option<u8>,
+    /// A polygon whose screen bounding box is wider or taller than this many pixels is split
+    /// (up to its object's tessellation level); 0 splits every polygon to the full level.
+    pub split_extent: u16,
     /// Override the scene's dithering.
     pub dither: Option<bool>,
     /// GTE divide (hardware UNR by default).
     pub divide_mode: DivideMode,
+}
+
+impl Default for PipelineOptions {
+    fn default() -> Self {
+        Self {
+            tessellation: None,
+            split_extent: DEFAULT_SPLIT_EXTENT,
+            dither: None,
+            divide_mode: DivideMode::default(),
+        }
+    }
 }
 
 /// Why a renderer could not be built.
@@ -52,7 +75,7 @@ impl std::error::Error for PipelineError {}
 /// What one frame did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameStats {
-    /// Polygons submitted (after tessellation).
+    /// Polygons examined after splitting: each ends drawn, culled, off screen or dropped.
     pub polygons: usize,
     /// Polygons linked into the ordering table and drawn.
     pub drawn: usize,
@@ -89,6 +112,7 @@ impl FrameStats {
 #[derive(Clone, Debug)]
 struct PreparedObject {
     faces: Vec<PreparedFace>,
+    level: u8,
     texture: Option<(Placement, u32)>,
 }
 
@@ -104,6 +128,9 @@ struct ProjectedFace {
     blend: Option<u8>,
 }
 
+/// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
+/// clamped to 0), divide overflow (SZ3 <= H/2, too near), SX2/SY2 saturated (gte.md §3,
+/// §5 steps 4 and 6, §6).
 const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
     .union(Flag::SX2_SATURATED)
     .union(Flag::SY2_SATURATED)
@@ -145,34 +172,42 @@ fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
     [row(0), row(1), row(2)]
 }
 
-/// Prepare an object's faces: scale, per-face texel coordinates (each face's texture
-/// coordinates shifted by whole texture repeats to start in the first repeat, then scaled to
-/// 0..size-1 texels and clamped to 255), tessellation.
-fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
-    let o = &scene.objects[index];
-    let mesh = &scene.meshes[o.mesh].mesh;
+/// Prepare an object's faces for the GTE: positions scaled and rounded to 16-bit vertices,
+/// normals in 1.3.12, per-face texel coordinates (each face's texture coordinates shifted by
+/// whole texture repeats to start in the first repeat, then scaled to 0..size-1 texels and
+/// clamped to 255) in 8.8 fixed point.
+fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
+    let Some(o) = scene.objects.get(index) else {
+        return Vec::new();
+    };
+    let Some(mesh) = scene.meshes.get(o.mesh).map(|m| &m.mesh) else {
+        return Vec::new();
+    };
     let size = o
         .texture
         .and_then(|t| scene.textures.get(t))
         .map_or((1.0, 1.0), |t| {
             (t.texture.width as f64 - 1.0, t.texture.height as f64 - 1.0)
         });
+    let uv_scale = f64::from(1u32 << UV_FRACTION_BITS);
     let mut faces = Vec::with_capacity(mesh.faces.len());
     for f in &mesh.faces {
         let count = if f.quad { 4 } else { 3 };
-        let Some(vs) = (0..count)
-            .map(|k| mesh.vertices.get(f.indices[k] as usize))
-            .collect::<Option<Vec<_>>>()
-        else {
+        let mut vs = [None; 4];
+        for (slot, &i) in vs.iter_mut().zip(&f.indices).take(count) {
+            *slot = mesh.vertices.get(i as usize);
+        }
+        if vs.iter().take(count).any(Option::is_none) {
             continue;
-        };
+        }
+        let vs = vs.iter().take(count).flatten();
         let min_u = vs
-            .iter()
+            .clone()
             .map(|v| v.uv[0])
             .fold(f64::INFINITY, f64::min)
             .floor();
         let min_v = vs
-            .iter()
+            .clone()
             .map(|v| v.uv[1])
             .fold(f64::INFINITY, f64::min)
             .floor();
@@ -180,19 +215,94 @@ fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
             quad: f.quad,
             ..Default::default()
         };
-        for (slot, v) in face.v.iter_mut().zip(&vs) {
+        for (slot, v) in face.v.iter_mut().zip(vs) {
+            let texel = |c: f64, min: f64, size: f64| {
+                (((c - min) * size).clamp(0.0, 255.0) * uv_scale).round() as u16
+            };
             *slot = PreparedVertex {
-                position: v.position.map(|c| c * o.scale),
-                normal: v.normal,
-                uv: [
-                    ((v.uv[0] - min_u) * size.0).clamp(0.0, 255.0),
-                    ((v.uv[1] - min_v) * size.1).clamp(0.0, 255.0),
-                ],
+                position: vector(v.position.map(|c| c * o.scale)),
+                normal: normal(v.normal),
+                uv: [texel(v.uv[0], min_u, size.0), texel(v.uv[1], min_v, size.1)],
             };
         }
         faces.push(face);
     }
-    tessellate(faces, level)
+    faces
+}
+
+/// What the GTE stage decides for one polygon.
+#[derive(Clone, Copy, Debug)]
+enum Verdict {
+    /// Discarded whole: a vertex behind or too near the camera (SZ3 saturated, divide
+    /// overflow), a saturated SX/SY, or a size the GPU would drop (gpu.md §3).
+    Drop,
+    /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (gte.md §7).
+    Cull,
+    /// Entirely outside the screen.
+    Offscreen,
+    /// To be drawn: screen positions, screen Z and the larger side of its bounding box.
+    Draw {
+        xy: [(i16, i16); 4],
+        sz: [u16; 4],
+        ir0: I4F12,
+        extent: i32,
+    },
+}
+
+/// Screen bounding box (min x, max x, min y, max y) of some vertices.
+fn bounds(points: &[(i16, i16)]) -> (i32, i32, i32, i32) {
+    points.iter().fold(
+        (i32::MAX, i32::MIN, i32::MAX, i32::MIN),
+        |(x0, x1, y0, y1), &(x, y)| {
+            let (x, y) = (i32::from(x), i32::from(y));
+            (x0.min(x), x1.max(x), y0.min(y), y1.max(y))
+        },
+    )
+}
+
+/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (gpu.md §3).
+fn gpu_drops(triangle: &[(i16, i16)]) -> bool {
+    let (x0, x1, y0, y1) = bounds(triangle);
+    x1 - x0 >= 1024 || y1 - y0 >= 512
+}
+
+/// RTPT (and RTPS for a quad's fourth vertex), NCLIP, and the whole-polygon tests.
+fn transform(g: &mut Geometry, face: &PreparedFace, (w, h): (i32, i32)) -> Verdict {
+    let v = &face.v;
+    let p = g.project_triangle([v[0].position, v[1].position, v[2].position]);
+    let mut flag = p.flag;
+    let area = g.nclip_current();
+    let mut xy = [p.xy[0], p.xy[1], p.xy[2], (0, 0)];
+    let mut sz = [p.sz[0], p.sz[1], p.sz[2], 0];
+    let mut ir0 = p.ir0;
+    if face.quad {
+        let q = g.project(v[3].position);
+        flag = flag.union(q.flag);
+        xy[3] = (q.x, q.y);
+        sz[3] = q.sz;
+        ir0 = q.ir0;
+    }
+    if flag.intersects(DROP_FLAGS) {
+        return Verdict::Drop;
+    }
+    if area <= 0 {
+        return Verdict::Cull;
+    }
+    let corners = if face.quad { &xy[..] } else { &xy[..3] };
+    let (x0, x1, y0, y1) = bounds(corners);
+    if x1 < 0 || x0 >= w || y1 < 0 || y0 >= h {
+        return Verdict::Offscreen;
+    }
+    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (gpu.md §3).
+    if gpu_drops(&xy[..3]) || (face.quad && gpu_drops(&xy[1..])) {
+        return Verdict::Drop;
+    }
+    Verdict::Draw {
+        xy,
+        sz,
+        ir0,
+        extent: (x1 - x0).max(y1 - y0),
+    }
 }
 
 /// Renders a scene frame by frame into a GPU's VRAM.
@@ -204,6 +314,8 @@ pub struct Renderer {
     ot: OrderingTable,
     geometry: Geometry,
     scratch: Vec<ProjectedFace>,
+    stack: SplitStack,
+    capacity: usize,
     display: DisplayArea,
 }
 
@@ -217,33 +329,62 @@ impl Renderer {
         gpu.gp1(0x0000_0000);
         let mut alloc = VramAllocator::new(width, height);
         let mut placements = Vec::new();
-        for t in &scene.textures {
+        for (index, t) in scene.textures.iter().enumerate() {
             let p = alloc
                 .place(&t.name, &t.texture)
                 .map_err(PipelineError::Vram)?;
+            // A textured polygon blends only the texels with bit 15 set (gpu.md §1): a texture
+            // worn by a semi-transparent material gets bit 15 on every texel colour except
+            // transparent 0000h.
+            let blended = scene
+                .objects
+                .iter()
+                .any(|o| o.texture == Some(index) && o.blend.is_some());
+            let mark = |c: u16| if blended && c != 0 { c | 0x8000 } else { c };
+            let (texels, clut) = match t.texture.depth {
+                Depth::Direct15 => {
+                    let texels: Vec<u16> = t.texture.halfwords().into_iter().map(mark).collect();
+                    (texels, Vec::new())
+                }
+                _ => {
+                    let clut: Vec<u16> = t.texture.clut.iter().map(|&c| mark(c)).collect();
+                    (t.texture.halfwords(), clut)
+                }
+            };
             upload(
                 &mut gpu,
                 p.page_x,
                 p.page_y,
                 t.texture.row_halfwords(),
-                &t.texture.halfwords(),
+                &texels,
             );
             if let Some((x, y)) = p.clut {
-                upload(&mut gpu, x, y, t.texture.clut.len(), &t.texture.clut);
+                upload(&mut gpu, x, y, clut.len(), &clut);
             }
             placements.push(p);
         }
         let mut objects = Vec::new();
         let mut capacity = 0;
         for (i, o) in scene.objects.iter().enumerate() {
-            let level = options.tessellation.unwrap_or(o.tessellation).min(4);
-            let faces = prepare(&scene, i, level);
-            capacity += faces.len();
+            let level = options
+                .tessellation
+                .unwrap_or(o.tessellation)
+                .min(MAX_LEVEL);
+            let faces = prepare(&scene, i);
+            capacity = faces
+                .len()
+                .saturating_mul(1 << (2 * level))
+                .saturating_add(capacity)
+                .min(MAX_POLYGONS);
             let texture = o.texture.and_then(|t| {
                 let depth = scene.textures.get(t)?.texture.depth.bits();
                 Some((*placements.get(t)?, depth))
             });
-            objects.push(PreparedObject { faces, texture });
+            objects.push(PreparedObject {
+                faces,
+                level,
+                texture,
+            });
         }
         // GP1: display mode for the width, 240 lines, display on.
         let mode = match width {
@@ -267,6 +408,8 @@ impl Renderer {
         Ok(Renderer {
             ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
             scratch: Vec::with_capacity(capacity),
+            stack: SplitStack::default(),
+            capacity,
             scene,
             options,
             objects,
@@ -328,12 +471,26 @@ impl Renderer {
             angle(cam.rotation[2]),
         );
         let g = &mut self.geometry;
+        let stack = &mut self.stack;
+        let scratch = &mut self.scratch;
+        let capacity = self.capacity;
+        let split_extent = i32::from(self.options.split_extent);
+        let (dqa, dqb) = scene
+            .fog
+            .and_then(|f| f.coefficients(cam.h))
+            .unwrap_or((0, 0));
         g.set_projection(&Projection {
             offset_x: I16F16::from_num(w / 2),
             offset_y: I16F16::from_num(h / 2),
             h: cam.h,
+            dqa: I8F8::from_bits(dqa),
+            dqb: I8F24::from_bits(dqb),
             ..Projection::default()
         });
+        if let Some(fog) = &scene.fog {
+            // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (gte.md §8).
+            g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
+        }
         for (object, prepared) in scene.objects.iter().zip(&self.objects) {
             let f = frame as f64;
             let rot = Matrix::rotation(
@@ -379,79 +536,83 @@ impl Renderer {
                 (p.clut_attr(), tpage)
             });
             for face in &prepared.faces {
-                stats.polygons += 1;
-                let v = face.v;
-                let p = g.project_triangle([
-                    vector(v[0].position),
-                    vector(v[1].position),
-                    vector(v[2].position),
-                ]);
-                let mut flag = p.flag;
-                let area = g.nclip_current();
-                let mut xy = [p.xy[0], p.xy[1], p.xy[2], (0, 0)];
-                let mut sz = [p.sz[0], p.sz[1], p.sz[2], 0];
-                if face.quad {
-                    let q = g.project(vector(v[3].position));
-                    flag = flag.union(q.flag);
-                    xy[3] = (q.x, q.y);
-                    sz[3] = q.sz;
-                }
-                if flag.intersects(DROP_FLAGS) {
-                    stats.dropped += 1;
-                    continue;
-                }
-                if area <= 0 {
-                    stats.culled += 1;
-                    continue;
-                }
-                let n = if face.quad { 4 } else { 3 };
-                let xs = xy[..n].iter().map(|p| p.0 as i32);
-                let ys = xy[..n].iter().map(|p| p.1 as i32);
-                let (min_x, max_x) = (xs.clone().min().unwrap_or(0), xs.max().unwrap_or(0));
-                let (min_y, max_y) = (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0));
-                if max_x < 0 || min_x >= w || max_y < 0 || min_y >= h {
-                    stats.offscreen += 1;
-                    continue;
-                }
-                if max_x - min_x >= 1024 || max_y - min_y >= 512 {
-                    stats.dropped += 1;
-                    continue;
-                }
-                let mut color = [object.color; 4];
-                if scene.light.is_some() {
-                    let c = g.normal_color_color_triple(
-                        [
-                            normal(v[0].normal),
-                            normal(v[1].normal),
-                            normal(v[2].normal),
-                        ],
-                        object.color,
-                    );
-                    color[..3].copy_from_slice(&c);
-                    if face.quad {
-                        color[3] = g.normal_color_color(normal(v[3].normal), object.color);
+                stack.push(*face, 0);
+                while let Some((face, level)) = stack.pop() {
+                    let verdict = transform(g, &face, (w, h));
+                    let split = level < prepared.level
+                        && match verdict {
+                            Verdict::Drop => true,
+                            Verdict::Draw { extent, .. } => extent > split_extent,
+                            Verdict::Cull | Verdict::Offscreen => false,
+                        };
+                    if split {
+                        stack.push_split(&face, level + 1);
+                        continue;
                     }
+                    stats.polygons += 1;
+                    let (xy, sz, ir0) = match verdict {
+                        Verdict::Drop => {
+                            stats.dropped += 1;
+                            continue;
+                        }
+                        Verdict::Cull => {
+                            stats.culled += 1;
+                            continue;
+                        }
+                        Verdict::Offscreen => {
+                            stats.offscreen += 1;
+                            continue;
+                        }
+                        Verdict::Draw { xy, sz, ir0, .. } => (xy, sz, ir0),
+                    };
+                    if scratch.len() >= capacity {
+                        stats.dropped += 1;
+                        continue;
+                    }
+                    let v = &face.v;
+                    let mut color = [object.color; 4];
+                    let normals = [v[0].normal, v[1].normal, v[2].normal];
+                    match (scene.light.is_some(), scene.fog.is_some()) {
+                        (true, false) => {
+                            let c = g.normal_color_color_triple(normals, object.color);
+                            color[..3].copy_from_slice(&c);
+                            if face.quad {
+                                color[3] = g.normal_color_color(v[3].normal, object.color);
+                            }
+                        }
+                        // NCDT/NCDS fade by IR0 as the last RTPT/RTPS left it: one factor
+                        // for the whole polygon, from its last vertex (gte.md §5 step 7).
+                        (true, true) => {
+                            let c = g.normal_color_depth_triple(normals, object.color);
+                            color[..3].copy_from_slice(&c);
+                            if face.quad {
+                                color[3] = g.normal_color_depth(v[3].normal, object.color);
+                            }
+                        }
+                        (false, true) => color = [g.depth_cue(object.color, ir0); 4],
+                        (false, false) => {}
+                    }
+                    let otz = if face.quad {
+                        g.average_z4(sz)
+                    } else {
+                        g.average_z3([sz[0], sz[1], sz[2]])
+                    };
+                    scratch.push(ProjectedFace {
+                        xy,
+                        color,
+                        uv: v.map(|p| p.texel()),
+                        quad: face.quad,
+                        ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
+                        texture,
+                        blend,
+                    });
                 }
-                let otz = if face.quad {
-                    g.average_z4(sz)
-                } else {
-                    g.average_z3([sz[0], sz[1], sz[2]])
-                };
-                let uv = v.map(|p| (p.uv[0].round() as u8, p.uv[1].round() as u8));
-                self.scratch.push(ProjectedFace {
-                    xy,
-                    color,
-                    uv,
-                    quad: face.quad,
-                    ot_index: ((otz as u32 >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
-                    texture,
-                    blend,
-                });
             }
         }
     }
 
     fn ot_stage(&mut self, stats: &mut FrameStats) {
+        let dither = self.options.dither.unwrap_or(self.scene.screen.dither);
         self.ot.clear();
         let mut packet = [0u32; 12];
         for f in &self.scratch {
@@ -485,6 +646,14 @@ impl Renderer {
             }
             if self.ot.insert(f.ot_index as usize, &packet[..len]).is_ok() {
                 stats.drawn += 1;
+            }
+            // An untextured polygon has no texpage attribute to carry its blend mode: a
+            // draw-mode packet (E1) linked after it at the same entry comes out just before
+            // it (gpu.md §2, §6).
+            if let (None, Some(mode)) = (f.texture, f.blend) {
+                let e1 = 0xE100_0000 | (dither as u32) << 9 | u32::from(mode & 3) << 5;
+                // A full primitive buffer leaves the polygon in the default mode.
+                let _ = self.ot.insert(f.ot_index as usize, &[e1]);
             }
         }
     }

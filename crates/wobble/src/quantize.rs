@@ -2,9 +2,13 @@
 //! in the GPU's 1555 format (gpu.md §1, §7).
 //!
 //! An image that already has few enough colours keeps them exactly (after the 8-to-5-bit
-//! reduction); otherwise the palette is chosen by NeuQuant from the `color_quant` crate
-//! (maintained by the image-rs project, no dependencies, good palettes for photographic
-//! input at small sizes; it also is what `image`'s GIF encoder uses).
+//! reduction): NeuQuant learns its palette from a sample of the pixels and moves every entry
+//! towards its neighbours, so even an image with only 16 colours would come back with
+//! slightly different ones (and its network is not tuned below about 26 entries); pixel art
+//! and textures already drawn to a palette, the usual PS1 material, must survive unchanged.
+//! Otherwise the palette is chosen by NeuQuant from the `color_quant` crate (maintained by
+//! the image-rs project, no dependencies, good palettes for photographic input at small
+//! sizes; it is also what `image`'s GIF encoder uses).
 
 use std::fmt;
 use std::path::Path;
@@ -243,6 +247,31 @@ impl Texture {
         })
     }
 
+    /// Check the fields agree: sides 1..=256, one texel per pixel, texel values within the
+    /// depth, a CLUT of 16 or 256 entries for CLUT depths and none for direct colour.
+    pub fn check(&self) -> Result<(), String> {
+        let (w, h) = (self.width as usize, self.height as usize);
+        if w == 0 || h == 0 || w > 256 || h > 256 {
+            return Err(format!("{w}x{h} does not fit a 256x256 texture page"));
+        }
+        if self.texels.len() != w * h {
+            return Err(format!("{w}x{h} texture has {} texels", self.texels.len()));
+        }
+        if self.clut.len() != self.depth.clut_len() {
+            return Err(format!(
+                "a {}-bit texture needs {} CLUT entries, has {}",
+                u8::from(self.depth),
+                self.depth.clut_len(),
+                self.clut.len()
+            ));
+        }
+        let limit = self.depth.clut_len();
+        if limit > 0 && self.texels.iter().any(|&t| t as usize >= limit) {
+            return Err(format!("texel index beyond the {limit}-entry CLUT"));
+        }
+        Ok(())
+    }
+
     /// VRAM halfwords per texture row.
     pub fn row_halfwords(&self) -> usize {
         (self.width as usize).div_ceil(self.depth.texels_per_halfword())
@@ -254,11 +283,17 @@ impl Texture {
         let bits = 16 / per;
         let row = self.row_halfwords();
         let mut out = vec![0u16; row * self.height as usize];
-        for y in 0..self.height as usize {
-            for x in 0..self.width as usize {
-                let t = self.texels[y * self.width as usize + x];
-                let slot = &mut out[y * row + x / per];
-                *slot |= t << ((x % per) * bits);
+        let mask = if bits == 16 {
+            0xFFFF
+        } else {
+            (1u16 << bits) - 1
+        };
+        let width = self.width as usize;
+        for (y, texels) in self.texels.chunks(width.max(1)).enumerate() {
+            for (x, &t) in texels.iter().enumerate() {
+                if let Some(slot) = out.get_mut(y * row + x / per) {
+                    *slot |= (t & mask) << ((x % per) * bits);
+                }
             }
         }
         out

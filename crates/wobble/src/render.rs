@@ -20,7 +20,8 @@ pub struct RenderArgs {
     /// Number of frames to render.
     #[arg(long, default_value_t = 1)]
     pub frames: u32,
-    /// Write all frames as an animated GIF (30 frames per second).
+    /// Write all frames as an animated GIF (30 frames per second). With --frames above 1
+    /// and neither --gif nor --png-dir, the GIF goes beside the PNG (wobble.gif).
     #[arg(long, conflicts_with = "png_dir")]
     pub gif: Option<PathBuf>,
     /// Write every frame as a numbered PNG into this directory.
@@ -32,6 +33,10 @@ pub struct RenderArgs {
     /// Override every object's tessellation level (0-4).
     #[arg(long)]
     pub tessellation: Option<u8>,
+    /// Split polygons larger than this many pixels on screen, up to the tessellation level
+    /// (0: split every polygon to the full level).
+    #[arg(long, default_value_t = crate::pipeline::DEFAULT_SPLIT_EXTENT)]
+    pub split_extent: u16,
     /// Turn dithering off.
     #[arg(long)]
     pub no_dither: bool,
@@ -78,6 +83,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     let options = PipelineOptions {
         tessellation: args.tessellation,
         dither: args.no_dither.then_some(false),
+        split_extent: args.split_extent,
         ..PipelineOptions::default()
     };
     let mut renderer = Renderer::new(scene, options).map_err(|e| e.to_string())?;
@@ -93,7 +99,14 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     } else {
         ProgressBar::hidden()
     };
-    let mut gif = match &args.gif {
+    let gif_path = match &args.gif {
+        Some(path) => Some(path.clone()),
+        None if args.frames > 1 && args.png_dir.is_none() => {
+            Some(args.output.with_extension("gif"))
+        }
+        None => None,
+    };
+    let mut gif = match &gif_path {
         Some(path) => {
             let file =
                 std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
@@ -110,14 +123,14 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     for frame in 0..args.frames {
         let stats = renderer.render_frame(frame);
         total.accumulate(&stats);
-        if args.gif.is_some() || args.png_dir.is_some() {
+        if gif_path.is_some() || args.png_dir.is_some() {
             let img = renderer.image();
             if let Some(dir) = &args.png_dir {
                 let path = dir.join(format!("frame{frame:05}.png"));
                 img.save_with_format(&path, image::ImageFormat::Png)
                     .map_err(|e| format!("{}: {e}", path.display()))?;
             }
-            if let (Some(encoder), Some(path)) = (gif.as_mut(), &args.gif) {
+            if let (Some(encoder), Some(path)) = (gif.as_mut(), &gif_path) {
                 let rgba = image::DynamicImage::ImageRgb8(img).to_rgba8();
                 let delay = image::Delay::from_numer_denom_ms(100, 3);
                 encoder

@@ -77,6 +77,50 @@ impl Default for Light {
     }
 }
 
+/// Depth cueing (fog): colours fade towards `color` with depth, through the GTE's depth-cue
+/// factor IR0 = (DQB + DQA * H/SZ) / 4096 (gte.md §5 step 7) and NCDT/NCDS or DPCS (gte.md
+/// §8). IR0 is linear in 1/SZ, so the fade runs from nothing at SZ = `near` to all fog at
+/// SZ = `far` and beyond.
+#[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Fog {
+    /// Far colour (FC).
+    pub color: [u8; 3],
+    /// Camera-space depth where the fade starts.
+    pub near: f64,
+    /// Camera-space depth where everything is `color`.
+    pub far: f64,
+}
+
+impl Default for Fog {
+    fn default() -> Self {
+        Self {
+            color: [0, 0, 0],
+            near: 1000.0,
+            far: 8000.0,
+        }
+    }
+}
+
+impl Fog {
+    /// DQA (s16) and DQB (s32) for projection distance `h`: with q = H * 10000h / SZ,
+    /// IR0 * 4096 = DQA * q + DQB must be 0 at SZ = near and 4096 * 4096 at SZ = far, so
+    /// DQA = -K / (16 H) and DQB = 4096 K / near with K = 4096 near far / (far - near).
+    /// `None` when the range does not fit the registers.
+    pub fn coefficients(&self, h: u16) -> Option<(i16, i32)> {
+        let (near, far) = (self.near, self.far);
+        if !(near.is_finite() && far.is_finite() && near >= 1.0 && far > near) || h == 0 {
+            return None;
+        }
+        let k = 4096.0 * near * far / (far - near);
+        let dqa = (-k / (16.0 * f64::from(h))).round();
+        let dqb = (4096.0 * k / near).round();
+        let fits = |v: f64, lo: f64, hi: f64| v >= lo && v <= hi;
+        (fits(dqa, -32768.0, 32767.0) && fits(dqb, i32::MIN as f64, i32::MAX as f64))
+            .then_some((dqa as i16, dqb as i32))
+    }
+}
+
 /// A scene object: a mesh instance with a transform and material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
@@ -96,7 +140,8 @@ pub struct Object {
     pub color: [u8; 3],
     /// Semi-transparency mode 0-3, when semi-transparent.
     pub blend: Option<u8>,
-    /// Tessellation level 0..=4: each level splits every polygon into four.
+    /// Tessellation level 0..=4: how many times a large or near polygon may be split into
+    /// four before projection (`pipeline.rs`, `tessellate.rs`).
     pub tessellation: u8,
 }
 
@@ -127,6 +172,8 @@ pub struct Scene {
     pub camera: Camera,
     /// Light; unlit objects use their colour as is.
     pub light: Option<Light>,
+    /// Depth cueing; none when `None`.
+    pub fog: Option<Fog>,
     /// Textures.
     pub textures: Vec<TextureAsset>,
     /// Meshes.
@@ -172,6 +219,7 @@ struct SceneFile {
     #[serde(default)]
     camera: Camera,
     light: Option<Light>,
+    fog: Option<Fog>,
     #[serde(default)]
     tessellation: u8,
     #[serde(default, rename = "texture")]
@@ -343,6 +391,7 @@ impl Scene {
             screen: file.screen,
             camera: file.camera,
             light: file.light,
+            fog: file.fog,
             textures,
             meshes,
             objects,
@@ -368,6 +417,15 @@ impl Scene {
         if self.camera.h == 0 {
             return Err("camera.h must be positive".into());
         }
+        if let Some(fog) = &self.fog
+            && fog.coefficients(self.camera.h).is_none()
+        {
+            return Err(format!(
+                "fog: need 1 <= near < far with the range wide enough for DQA (16 bits), got \
+                 near = {}, far = {}",
+                fog.near, fog.far
+            ));
+        }
         for (i, o) in self.objects.iter().enumerate() {
             if o.tessellation > MAX_TESSELLATION {
                 return Err(format!(
@@ -390,6 +448,11 @@ impl Scene {
                 ));
             }
         }
+        for t in &self.textures {
+            t.texture
+                .check()
+                .map_err(|e| format!("texture `{}`: {e}", t.name))?;
+        }
         let cam = self.camera.position.iter().chain(&self.camera.rotation);
         if cam.clone().any(|v| !v.is_finite() || v.abs() > 1e6) {
             return Err("camera: numbers must be finite and within +-1000000".into());
@@ -397,67 +460,8 @@ impl Scene {
         Ok(())
     }
 
-    /// The built-in scene: a spinning checkerboard cube over a large checkerboard floor seen
-    /// at a grazing angle, a 4-bit CLUT texture, Gouraud lighting, dithering on.
+    /// The built-in scene (`default_scene.rs`).
     pub fn default_scene() -> Scene {
-        let checker = Texture::checker(64, 8, [232, 232, 224], [200, 40, 48]);
-        let floor = Texture::checker(64, 4, [96, 176, 96], [32, 72, 40]);
-        Scene {
-            screen: Screen::default(),
-            camera: Camera {
-                position: [0.0, -300.0, -1500.0],
-                rotation: [12.0, 0.0, 0.0],
-                h: 300,
-            },
-            light: Some(Light {
-                direction: [0.6, 1.0, 0.8],
-                color: [255, 240, 220],
-                ambient: [70, 70, 90],
-            }),
-            textures: vec![
-                TextureAsset {
-                    name: "checker".into(),
-                    texture: checker,
-                },
-                TextureAsset {
-                    name: "floor".into(),
-                    texture: floor,
-                },
-            ],
-            meshes: vec![
-                MeshAsset {
-                    name: "cube".into(),
-                    mesh: Mesh::cube(1.0),
-                },
-                MeshAsset {
-                    name: "floor".into(),
-                    mesh: Mesh::grid(2.0, 6, 6.0),
-                },
-            ],
-            objects: vec![
-                Object {
-                    mesh: 0,
-                    texture: Some(0),
-                    position: [0.0, -190.0, -450.0],
-                    rotation: [20.0, 30.0, 0.0],
-                    spin: [1.0, 2.0, 0.5],
-                    scale: 120.0,
-                    color: [128, 128, 128],
-                    blend: None,
-                    tessellation: 0,
-                },
-                Object {
-                    mesh: 1,
-                    texture: Some(1),
-                    position: [0.0, 0.0, 160.0],
-                    rotation: [0.0; 3],
-                    spin: [0.0; 3],
-                    scale: 1500.0,
-                    color: [128, 128, 128],
-                    blend: None,
-                    tessellation: 0,
-                },
-            ],
-        }
+        crate::default_scene::default_scene()
     }
 }

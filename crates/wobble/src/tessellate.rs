@@ -1,22 +1,43 @@
 //! Tessellation: splitting polygons before projection, the PS1 games' cure for affine
-//! texture warp and near-plane drops. Each level splits every quad into four quads and every
-//! triangle into four triangles at edge midpoints (object space, texture coordinates
-//! interpolated linearly), so level n multiplies the polygon count by 4^n.
+//! texture warp and near-plane drops (the SDK's DivPolyFT4-style subdivision). A split cuts
+//! a quad into four quads and a triangle into four triangles at its edge midpoints, in object
+//! space, with normals and texture coordinates interpolated linearly; the new vertices go
+//! through the GTE like any other. All arithmetic is integer, as on the console.
+//!
+//! The renderer decides per polygon and per frame whether to split (`pipeline.rs`): up to
+//! the object's level, a polygon is split while its projected size (object size / depth) is
+//! large or while a vertex lies behind the near plane.
 
-/// A polygon vertex prepared for the GTE: position in GTE units, unit normal, texture
-/// coordinate in texels.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+use gte::typed::Vector3;
+
+/// Fraction bits of the texture coordinates carried through splits: 8.8 texels.
+pub const UV_FRACTION_BITS: u32 = 8;
+
+/// A polygon vertex ready for the GTE: position in GTE units (V0-V2), 1.3.12 normal and
+/// texture coordinate in 8.8 texels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PreparedVertex {
-    /// Position (fits signed 16 bits).
-    pub position: [f64; 3],
-    /// Unit normal.
-    pub normal: [f64; 3],
-    /// Texture coordinate in texels.
-    pub uv: [f64; 2],
+    /// Position, a 16-bit GTE vertex.
+    pub position: Vector3,
+    /// Normal, 1.3.12 (4096 = 1.0).
+    pub normal: Vector3,
+    /// Texture coordinate in 1/256 texels (0..=255 texels).
+    pub uv: [u16; 2],
+}
+
+impl PreparedVertex {
+    /// The texture coordinate rounded to whole texels, as a GP0 UV byte pair.
+    pub fn texel(&self) -> (u8, u8) {
+        let round = |c: u16| {
+            let t = (u32::from(c) + (1 << (UV_FRACTION_BITS - 1))) >> UV_FRACTION_BITS;
+            t.min(255) as u8
+        };
+        (round(self.uv[0]), round(self.uv[1]))
+    }
 }
 
 /// A polygon with its own vertices: quads in GP0 order (v3 opposite v0).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PreparedFace {
     /// Vertices; the fourth is unused for triangles.
     pub v: [PreparedVertex; 4],
@@ -24,27 +45,34 @@ pub struct PreparedFace {
     pub quad: bool,
 }
 
+/// Midpoint of two 16-bit values (floor of the mean; never overflows).
+fn mid16(a: i16, b: i16) -> i16 {
+    ((i32::from(a) + i32::from(b)) >> 1) as i16
+}
+
+fn mid_vector(a: Vector3, b: Vector3) -> Vector3 {
+    Vector3 {
+        x: mid16(a.x, b.x),
+        y: mid16(a.y, b.y),
+        z: mid16(a.z, b.z),
+    }
+}
+
 fn mid(a: &PreparedVertex, b: &PreparedVertex) -> PreparedVertex {
-    let avg = |x: f64, y: f64| (x + y) / 2.0;
+    let avg = |x: u16, y: u16| ((u32::from(x) + u32::from(y)) >> 1) as u16;
     PreparedVertex {
-        position: [
-            avg(a.position[0], b.position[0]),
-            avg(a.position[1], b.position[1]),
-            avg(a.position[2], b.position[2]),
-        ],
-        normal: [
-            avg(a.normal[0], b.normal[0]),
-            avg(a.normal[1], b.normal[1]),
-            avg(a.normal[2], b.normal[2]),
-        ],
+        position: mid_vector(a.position, b.position),
+        normal: mid_vector(a.normal, b.normal),
         uv: [avg(a.uv[0], b.uv[0]), avg(a.uv[1], b.uv[1])],
     }
 }
 
-/// Split one face into four.
+/// Split one face into four with the winding (and so the NCLIP sign) of the parent.
 pub fn split(face: &PreparedFace) -> [PreparedFace; 4] {
     let [v0, v1, v2, v3] = &face.v;
     if face.quad {
+        // Midpoints of the four edges (v0v1, v0v2, v1v3, v2v3) and the centre (the midpoint
+        // of the two opposite edge midpoints).
         let (m01, m02, m13, m23) = (mid(v0, v1), mid(v0, v2), mid(v1, v3), mid(v2, v3));
         let c = mid(&m01, &m23);
         let q = |a, b, c, d| PreparedFace {
@@ -72,10 +100,61 @@ pub fn split(face: &PreparedFace) -> [PreparedFace; 4] {
     }
 }
 
-/// Tessellate faces `level` times.
-pub fn tessellate(faces: Vec<PreparedFace>, level: u8) -> Vec<PreparedFace> {
-    let mut faces = faces;
-    for _ in 0..level {
+/// Largest tessellation level.
+pub const MAX_LEVEL: u8 = 4;
+
+/// Pending faces of one depth-first subdivision: at most three siblings wait at each of
+/// [`MAX_LEVEL`] levels, plus the face being examined.
+pub const STACK_DEPTH: usize = 3 * MAX_LEVEL as usize + 1;
+
+/// A fixed-capacity stack of faces and their levels for depth-first subdivision without
+/// allocation.
+#[derive(Clone, Debug)]
+pub struct SplitStack {
+    items: [(PreparedFace, u8); STACK_DEPTH + 3],
+    len: usize,
+}
+
+impl Default for SplitStack {
+    fn default() -> Self {
+        Self {
+            items: [(PreparedFace::default(), 0); STACK_DEPTH + 3],
+            len: 0,
+        }
+    }
+}
+
+impl SplitStack {
+    /// Push a face at a level; returns false (and drops it) when full, which cannot happen
+    /// while levels stay within [`MAX_LEVEL`].
+    pub fn push(&mut self, face: PreparedFace, level: u8) -> bool {
+        match self.items.get_mut(self.len) {
+            Some(slot) => {
+                *slot = (face, level);
+                self.len += 1;
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Push the four children of `face`, in reverse so the first child is examined first.
+    pub fn push_split(&mut self, face: &PreparedFace, level: u8) -> bool {
+        let children = split(face);
+        children.iter().rev().all(|c| self.push(*c, level))
+    }
+
+    /// Take the most recently pushed face.
+    pub fn pop(&mut self) -> Option<(PreparedFace, u8)> {
+        self.len = self.len.checked_sub(1)?;
+        self.items.get(self.len).copied()
+    }
+}
+
+/// Split every face `level` times (uniform tessellation: 4^level faces per face).
+pub fn tessellate(faces: &[PreparedFace], level: u8) -> Vec<PreparedFace> {
+    let mut faces = faces.to_vec();
+    for _ in 0..level.min(MAX_LEVEL) {
         faces = faces.iter().flat_map(split).collect();
     }
     faces
@@ -85,34 +164,39 @@ pub fn tessellate(faces: Vec<PreparedFace>, level: u8) -> Vec<PreparedFace> {
 mod tests {
     use super::*;
 
-    fn vertex(x: f64, y: f64) -> PreparedVertex {
+    fn vertex(x: i16, y: i16) -> PreparedVertex {
         PreparedVertex {
-            position: [x, y, 0.0],
-            normal: [0.0, 0.0, -1.0],
-            uv: [x, y],
+            position: Vector3 { x, y, z: 0 },
+            normal: Vector3 {
+                x: 0,
+                y: 0,
+                z: -4096,
+            },
+            uv: [x as u16 * 256, y as u16 * 256],
         }
     }
 
     #[test]
     fn quad_split_covers_the_quad() {
         let q = PreparedFace {
-            v: [
-                vertex(0.0, 0.0),
-                vertex(4.0, 0.0),
-                vertex(0.0, 4.0),
-                vertex(4.0, 4.0),
-            ],
+            v: [vertex(0, 0), vertex(4, 0), vertex(0, 4), vertex(4, 4)],
             quad: true,
         };
-        let parts = tessellate(vec![q], 2);
+        let parts = tessellate(&[q], 2);
         assert_eq!(parts.len(), 16);
         // Each level-2 quad is 1x1 and keeps the Z order (v3 opposite v0).
         for p in &parts {
-            assert_eq!(p.v[1].position[0] - p.v[0].position[0], 1.0);
-            assert_eq!(p.v[2].position[1] - p.v[0].position[1], 1.0);
+            assert_eq!(p.v[1].position.x - p.v[0].position.x, 1);
+            assert_eq!(p.v[2].position.y - p.v[0].position.y, 1);
+            assert_eq!(p.v[3].position.x, p.v[1].position.x);
+            assert_eq!(p.v[3].position.y, p.v[2].position.y);
+            // Texture coordinates follow positions (uv = 256 * position here).
             assert_eq!(
-                p.v[3].position,
-                [p.v[1].position[0], p.v[2].position[1], 0.0]
+                p.v[3].uv,
+                [
+                    p.v[3].position.x as u16 * 256,
+                    p.v[3].position.y as u16 * 256
+                ]
             );
         }
     }
@@ -120,19 +204,43 @@ mod tests {
     #[test]
     fn triangle_split_keeps_winding() {
         let t = PreparedFace {
-            v: [
-                vertex(0.0, 0.0),
-                vertex(4.0, 0.0),
-                vertex(0.0, 4.0),
-                vertex(0.0, 0.0),
-            ],
+            v: [vertex(0, 0), vertex(4, 0), vertex(0, 4), vertex(0, 0)],
             quad: false,
         };
         for p in split(&t) {
-            let [a, b, c, _] = p.v;
-            let area = (b.position[0] - a.position[0]) * (c.position[1] - a.position[1])
-                - (c.position[0] - a.position[0]) * (b.position[1] - a.position[1]);
-            assert_eq!(area, 4.0, "each child has a quarter of the area, same sign");
+            let [a, b, c, _] = p.v.map(|v| (v.position.x as i32, v.position.y as i32));
+            let area = (b.0 - a.0) * (c.1 - a.1) - (c.0 - a.0) * (b.1 - a.1);
+            assert_eq!(area, 4, "each child has a quarter of the area, same sign");
         }
+    }
+
+    #[test]
+    fn stack_holds_a_full_depth_first_descent() {
+        let q = PreparedFace {
+            v: [vertex(0, 0), vertex(16, 0), vertex(0, 16), vertex(16, 16)],
+            quad: true,
+        };
+        let mut s = SplitStack::default();
+        assert!(s.push(q, 0));
+        let mut leaves = 0;
+        while let Some((f, level)) = s.pop() {
+            if level < MAX_LEVEL {
+                assert!(s.push_split(&f, level + 1));
+            } else {
+                leaves += 1;
+            }
+        }
+        assert_eq!(leaves, 256);
+    }
+
+    #[test]
+    fn texel_rounds_half_up_and_saturates() {
+        let v = |u: u16| PreparedVertex {
+            uv: [u, 0],
+            ..Default::default()
+        };
+        assert_eq!(v(0x0280).texel().0, 3);
+        assert_eq!(v(0x027F).texel().0, 2);
+        assert_eq!(v(0xFFFF).texel().0, 255);
     }
 }

@@ -60,12 +60,12 @@ pub struct VramAllocator {
 impl VramAllocator {
     /// An allocator for display buffers of `width` x `height` (two, stacked).
     pub fn new(width: u16, height: u16) -> Self {
-        let first_column = width.div_ceil(64);
+        let first_column = width.div_ceil(64).min(16);
         Self {
             first_column,
             next: 0,
             clut_x: 0,
-            clut_y: (2 * height).min(512),
+            clut_y: height.saturating_mul(2).min(512),
             clut_right: width.min(1024),
             clut_bottom: 512,
         }
@@ -98,8 +98,8 @@ impl VramAllocator {
         let clut = if texture.clut.is_empty() {
             None
         } else {
-            let len = texture.clut.len() as u16;
-            if self.clut_x + len > self.clut_right {
+            let len = u16::try_from(texture.clut.len()).unwrap_or(u16::MAX);
+            if self.clut_x.saturating_add(len) > self.clut_right {
                 self.clut_x = 0;
                 self.clut_y += 1;
             }

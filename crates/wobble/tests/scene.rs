@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 use std::process::Command;
+use wobble::mesh::Mesh;
 use wobble::scene::Scene;
 
 fn root() -> PathBuf {
@@ -25,6 +26,7 @@ fn error(text: &str, name: &str) -> String {
 fn example_scene_loads() {
     let s = Scene::load(&root().join("fixtures/scenes/example.toml")).unwrap();
     assert_eq!(s.objects.len(), 3);
+    assert_eq!(s.fog.map(|f| (f.near, f.far)), Some((1500.0, 4000.0)));
     assert_eq!(s.textures[0].texture.clut.len(), 16);
     // The pyramid: a quad base and four triangles.
     assert_eq!(s.meshes[0].mesh.faces.len(), 5);
@@ -147,4 +149,35 @@ fn render_gif() {
     ))
     .unwrap();
     assert_eq!(decoder.into_frames().count(), 4);
+}
+
+#[test]
+fn frames_without_gif_flag_write_a_gif_beside_the_png() {
+    let out = write("beside.png", "");
+    let gif = out.with_extension("gif");
+    let _ = std::fs::remove_file(&gif);
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(["render", "--frames", "2", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    use image::AnimationDecoder;
+    let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(
+        std::fs::File::open(&gif).unwrap(),
+    ))
+    .unwrap();
+    assert_eq!(decoder.into_frames().count(), 2);
+}
+
+#[test]
+fn malformed_obj_names_file_and_line() {
+    let obj = write(
+        "broken.obj",
+        "# a triangle with a bad index\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 7\n",
+    );
+    let e = Mesh::load_obj(&obj).unwrap_err().to_string();
+    assert!(e.contains("broken.obj") && e.contains("line 6"), "{e}");
+    let obj = write("badv.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n");
+    let e = Mesh::load_obj(&obj).unwrap_err().to_string();
+    assert!(e.contains("badv.obj") && e.contains("line 2"), "{e}");
 }

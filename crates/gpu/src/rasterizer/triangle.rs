@@ -3,7 +3,7 @@
 //! vertex.
 
 use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
-use crate::color::DITHER_MATRIX;
+use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
 use crate::{VRAM_LEN, VRAM_WIDTH};
@@ -162,7 +162,10 @@ pub(super) fn draw<
                     .wrapping_add(grads[i].1.wrapping_mul(dy));
             }
         }
-        let dither_row = DITHER_MATRIX[(y & 3) as usize];
+        // Per-span copies, so the pixel loop keeps them in registers.
+        let step = grads.map(|g| g.0);
+        let env = *env;
+        let dither_row = &DITHER_TABLES[(y & 3) as usize];
         for x in x_start..x_end {
             let rgb = if GOURAUD {
                 [
@@ -173,34 +176,55 @@ pub(super) fn draw<
             } else {
                 flat
             };
-            shade_pixel::<TEX, RAW, BLEND, DITHER, MASK_CHECK>(
+            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
                 vram,
                 row + x as usize,
                 rgb,
                 (acc[3] >> 24) as u8,
                 (acc[4] >> 24) as u8,
-                dither_row[(x & 3) as usize],
-                env,
+                if DITHER {
+                    &dither_row[(x & 3) as usize]
+                } else {
+                    &PLAIN_TABLE
+                },
+                &env,
             );
             for i in 0..5 {
                 if used(i) {
-                    acc[i] = acc[i].wrapping_add(grads[i].0);
+                    acc[i] = acc[i].wrapping_add(step[i]);
                 }
             }
         }
     };
 
-    // Upper part: rows a.y..b.y, walked down from a (gpu.md §3.4).
-    let start = edge_start(a.x);
-    for y in a.y..b.y {
-        let k = (y - a.y) as i64;
-        span(y, start + k * base_step, start + k * upper_step);
+    // The two parts (gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows [b.y, c.y)
+    // bounded by b->c. The base edge a->c is always measured from a. A part touching the core
+    // vertex from below is walked bottom-up: its bound edge starts at the lower vertex and
+    // each row pre-decrements. The core vertex fixes the directions: core a, both parts
+    // top-down (from a, then from b); core b, the upper part bottom-up from b and the lower
+    // part top-down from b; core c, both bottom-up (from b, then from c).
+    let base_start = edge_start(a.x);
+    let base_at = |y: i32| base_start + (y - a.y) as i64 * base_step;
+    if core == 0 {
+        let bound = edge_start(a.x);
+        for y in a.y..b.y {
+            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step);
+        }
+    } else {
+        let bound = edge_start(b.x);
+        for y in (a.y..b.y).rev() {
+            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step);
+        }
     }
-    // Lower part: rows b.y..c.y, stepped back from c with pre-decrement.
-    let base_at_c = start + (c.y - a.y) as i64 * base_step;
-    let bound_at_c = edge_start(c.x);
-    for y in b.y..c.y {
-        let k = (c.y - y) as i64;
-        span(y, base_at_c - k * base_step, bound_at_c - k * lower_step);
+    if core == 2 {
+        let bound = edge_start(c.x);
+        for y in (b.y..c.y).rev() {
+            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step);
+        }
+    } else {
+        let bound = edge_start(b.x);
+        for y in b.y..c.y {
+            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step);
+        }
     }
 }
