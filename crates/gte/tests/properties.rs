@@ -17,6 +17,16 @@ fn any_command() -> impl Strategy<Value = u32> {
     ]
 }
 
+/// A translation component: uniform, or within 2^18 of either end of i32, where
+/// TR << 12 plus one 16x16 product can cross +-2^43.
+fn translation() -> impl Strategy<Value = i32> {
+    prop_oneof![
+        any::<i32>(),
+        (i32::MAX - 0x4_0000)..=i32::MAX,
+        i32::MIN..=(i32::MIN + 0x4_0000),
+    ]
+}
+
 fn packed(lo: i16, hi: i16) -> u32 {
     (lo as u16 as u32) | ((hi as u16 as u32) << 16)
 }
@@ -79,24 +89,33 @@ proptest! {
         prop_assert!(q <= 0x1FFFF);
     }
 
-    /// MAC1 44-bit flags: MVMVA (RT, V0, TR) with only RT11 non-zero, so the running sum after
-    /// the first product is the final one: TRX<<12 + RT11*VX.
+    /// MAC1-3 44-bit flags: MVMVA (RT, V0, TR) with only the first matrix column non-zero,
+    /// so each row's running sum after its first product is the final one: TRn<<12 + RTn1*VX.
     #[test]
-    fn mac1_overflow_flags(trx in any::<i32>(), rt11 in any::<i16>(), vx in any::<i16>(), sf in any::<bool>()) {
+    fn mac_overflow_flags(tr in prop::array::uniform3(translation()), col in prop::array::uniform3(any::<i16>()), vx in any::<i16>(), sf in any::<bool>()) {
         let mut gte = Gte::new();
-        gte.write_control(0, rt11 as u16 as u32);
-        gte.write_control(5, trx as u32);
+        // RT11 (c0 low), RT21 (c1 high), RT31 (c3 low).
+        gte.write_control(0, col[0] as u16 as u32);
+        gte.write_control(1, (col[1] as u16 as u32) << 16);
+        gte.write_control(3, col[2] as u16 as u32);
+        for (n, t) in tr.iter().enumerate() {
+            gte.write_control(5 + n, *t as u32);
+        }
         gte.write_data(0, packed(vx, 0));
         let word = Command::build(Opcode::Mvmva, sf, false, MatrixSel::Rotation, VectorSel::V0, TranslationSel::Translation).word();
         gte.execute(word);
-        let sum = ((trx as i128) << 12) + rt11 as i128 * vx as i128;
         let flag = gte.flag();
-        prop_assert_eq!(flag.contains(Flag::MAC1_POSITIVE_OVERFLOW), sum > MAC_MAX);
-        prop_assert_eq!(flag.contains(Flag::MAC1_NEGATIVE_OVERFLOW), sum < MAC_MIN);
-        // MAC1 is the 44-bit wrapped sum shifted, low 32 bits.
-        let wrapped = if sum > MAC_MAX { sum - (1 << 44) } else if sum < MAC_MIN { sum + (1 << 44) } else { sum };
+        let positive = [Flag::MAC1_POSITIVE_OVERFLOW, Flag::MAC2_POSITIVE_OVERFLOW, Flag::MAC3_POSITIVE_OVERFLOW];
+        let negative = [Flag::MAC1_NEGATIVE_OVERFLOW, Flag::MAC2_NEGATIVE_OVERFLOW, Flag::MAC3_NEGATIVE_OVERFLOW];
         let shift = if sf { 12 } else { 0 };
-        prop_assert_eq!(gte.read_data(25), (wrapped >> shift) as i32 as u32);
+        for n in 0..3 {
+            let sum = ((tr[n] as i128) << 12) + col[n] as i128 * vx as i128;
+            prop_assert_eq!(flag.contains(positive[n]), sum > MAC_MAX, "MAC{}", n + 1);
+            prop_assert_eq!(flag.contains(negative[n]), sum < MAC_MIN, "MAC{}", n + 1);
+            // MACn is the 44-bit wrapped sum shifted, low 32 bits.
+            let wrapped = if sum > MAC_MAX { sum - (1 << 44) } else if sum < MAC_MIN { sum + (1 << 44) } else { sum };
+            prop_assert_eq!(gte.read_data(25 + n), (wrapped >> shift) as i32 as u32, "MAC{}", n + 1);
+        }
     }
 
     /// IR1-3 saturation with both lm settings: MVMVA (RT, V0, no add) with sf=0, where the
@@ -155,6 +174,8 @@ proptest! {
         prop_assert_eq!(gte.flag().contains(Flag::SZ3_OTZ_SATURATED), !(0..=0xFFFF).contains(&otz));
         prop_assert_eq!(gte.read_data(7) as i128, otz.clamp(0, 0xFFFF));
         prop_assert_eq!(gte.read_data(24), s as u32);
+        prop_assert_eq!(gte.flag().contains(Flag::MAC0_POSITIVE_OVERFLOW), s > i32::MAX as i128);
+        prop_assert_eq!(gte.flag().contains(Flag::MAC0_NEGATIVE_OVERFLOW), s < i32::MIN as i128);
     }
 
     /// Colour FIFO saturation: GPF, Cn = (IRn * IR0 >> shift) >> 4 clamped to 0..FFh.
@@ -182,7 +203,7 @@ proptest! {
     /// (itself held to hardware vectors and the exhaustive sweep).
     #[test]
     fn screen_and_ir0_saturation(
-        v in prop::array::uniform3(-4000i16..4000), trz in 1i32..30000, h in any::<u16>(),
+        v in prop::array::uniform3(-4000i16..4000), trz in -5000i32..100_000, h in any::<u16>(),
         ofx in any::<i32>(), ofy in any::<i32>(), dqa in any::<i16>(), dqb in any::<i32>()
     ) {
         let mut gte = Gte::new();
@@ -201,6 +222,7 @@ proptest! {
         // Identity rotation, sf=1: IR = V (+TR), SZ3 = VZ + TRZ.
         let z = v[2] as i128 + trz as i128;
         prop_assert_eq!(gte.read_data(19) as i128, z.clamp(0, 0xFFFF));
+        prop_assert_eq!(gte.flag().contains(Flag::SZ3_OTZ_SATURATED), !(0..=0xFFFF).contains(&z));
         let (q, _) = unr_divide(h, z.clamp(0, 0xFFFF) as u16);
         let q = q as i128;
         let x = q * v[0] as i128 + ofx as i128;

@@ -110,7 +110,7 @@ const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
     .union(Flag::SZ3_OTZ_SATURATED);
 
 /// Degrees to 1/4096 turn.
-fn angle(deg: f64) -> i32 {
+pub fn angle(deg: f64) -> i32 {
     (deg.rem_euclid(360.0) * 4096.0 / 360.0).round() as i32
 }
 
@@ -148,7 +148,7 @@ fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
 /// Prepare an object's faces: scale, per-face texel coordinates (each face's texture
 /// coordinates shifted by whole texture repeats to start in the first repeat, then scaled to
 /// 0..size-1 texels and clamped to 255), tessellation.
-fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
+pub fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
     let o = &scene.objects[index];
     let mesh = &scene.meshes[o.mesh].mesh;
     let size = o
@@ -193,6 +193,48 @@ fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
         faces.push(face);
     }
     tessellate(faces, level)
+}
+
+/// The object's rotation in degrees at `frame`.
+pub fn object_rotation(object: &crate::scene::Object, frame: u32) -> [f64; 3] {
+    let f = frame as f64;
+    [
+        object.rotation[0] + object.spin[0] * f,
+        object.rotation[1] + object.spin[1] * f,
+        object.rotation[2] + object.spin[2] * f,
+    ]
+}
+
+/// RT and TR for an object at `frame`: the camera rotation times the object rotation, and
+/// the object's position in camera space (what the pipeline loads into the GTE).
+pub fn object_transform(
+    scene: &Scene,
+    object: &crate::scene::Object,
+    frame: u32,
+) -> (Matrix, Translation) {
+    let cam = &scene.camera;
+    let view = Matrix::rotation(
+        angle(cam.rotation[0]),
+        angle(cam.rotation[1]),
+        angle(cam.rotation[2]),
+    );
+    let r = object_rotation(object, frame);
+    let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
+    let relative = [
+        object.position[0] - cam.position[0],
+        object.position[1] - cam.position[1],
+        object.position[2] - cam.position[2],
+    ];
+    let t = apply(&view, relative);
+    let clamp32 = |v: f64| v.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32;
+    (
+        view.multiply(&rot),
+        Translation {
+            x: clamp32(t[0]),
+            y: clamp32(t[1]),
+            z: clamp32(t[2]),
+        },
+    )
 }
 
 /// Renders a scene frame by frame into a GPU's VRAM.
@@ -322,11 +364,6 @@ impl Renderer {
         let scene = &self.scene;
         let (w, h) = (scene.screen.width as i32, scene.screen.height as i32);
         let cam = &scene.camera;
-        let view = Matrix::rotation(
-            angle(cam.rotation[0]),
-            angle(cam.rotation[1]),
-            angle(cam.rotation[2]),
-        );
         let g = &mut self.geometry;
         g.set_projection(&Projection {
             offset_x: I16F16::from_num(w / 2),
@@ -335,25 +372,11 @@ impl Renderer {
             ..Projection::default()
         });
         for (object, prepared) in scene.objects.iter().zip(&self.objects) {
-            let f = frame as f64;
-            let rot = Matrix::rotation(
-                angle(object.rotation[0] + object.spin[0] * f),
-                angle(object.rotation[1] + object.spin[1] * f),
-                angle(object.rotation[2] + object.spin[2] * f),
-            );
-            let relative = [
-                object.position[0] - cam.position[0],
-                object.position[1] - cam.position[1],
-                object.position[2] - cam.position[2],
-            ];
-            let t = apply(&view, relative);
-            let clamp32 = |v: f64| v.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32;
-            g.set_rotation(&view.multiply(&rot));
-            g.set_translation(Translation {
-                x: clamp32(t[0]),
-                y: clamp32(t[1]),
-                z: clamp32(t[2]),
-            });
+            let r = object_rotation(object, frame);
+            let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
+            let (rt, tr) = object_transform(scene, object, frame);
+            g.set_rotation(&rt);
+            g.set_translation(tr);
             if let Some(light) = &scene.light {
                 // LLM row = -(light direction) in object space: (R^T (-d))^T.
                 let d = light.direction;

@@ -115,6 +115,9 @@ pub(crate) const fn wrap11(v: i32) -> i32 {
     (v << 21) >> 21
 }
 
+/// The CLUT an untextured primitive carries (never read).
+static NO_CLUT: [u16; 256] = [0; 256];
+
 fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
     vram.as_mut_slice().try_into().ok()
 }
@@ -171,8 +174,16 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
     let Some(vram) = vram_array(vram) else {
         return;
     };
-    let mut clut = ClutCache::default();
-    let env = env(vram, state, &mut clut, None, line.blend);
+    let env = PixelEnv {
+        mask_or: if state.mask.set { 0x8000 } else { 0 },
+        blend: line.blend.unwrap_or_default(),
+        sampler: Sampler {
+            clut: &NO_CLUT,
+            page_x: 0,
+            page_y: 0,
+            window: state.window,
+        },
+    };
     let (g, b, d, m) = (
         line.gouraud,
         line.blend.is_some(),

@@ -190,17 +190,34 @@ pub(super) fn draw<
         }
     };
 
-    // Upper part: rows a.y..b.y, walked down from a (gpu.md §3.4).
-    let start = edge_start(a.x);
-    for y in a.y..b.y {
-        let k = (y - a.y) as i64;
-        span(y, start + k * base_step, start + k * upper_step);
+    // The two parts (gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows [b.y, c.y)
+    // bounded by b->c. The base edge a->c is always measured from a. A part touching the core
+    // vertex from below is walked bottom-up: its bound edge starts at the lower vertex and
+    // each row pre-decrements. The core vertex fixes the directions: core a, both parts
+    // top-down (from a, then from b); core b, the upper part bottom-up from b and the lower
+    // part top-down from b; core c, both bottom-up (from b, then from c).
+    let base_start = edge_start(a.x);
+    let base_at = |y: i32| base_start + (y - a.y) as i64 * base_step;
+    if core == 0 {
+        let bound = edge_start(a.x);
+        for y in a.y..b.y {
+            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step);
+        }
+    } else {
+        let bound = edge_start(b.x);
+        for y in (a.y..b.y).rev() {
+            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step);
+        }
     }
-    // Lower part: rows b.y..c.y, stepped back from c with pre-decrement.
-    let base_at_c = start + (c.y - a.y) as i64 * base_step;
-    let bound_at_c = edge_start(c.x);
-    for y in b.y..c.y {
-        let k = (c.y - y) as i64;
-        span(y, base_at_c - k * base_step, bound_at_c - k * lower_step);
+    if core == 2 {
+        let bound = edge_start(c.x);
+        for y in (b.y..c.y).rev() {
+            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step);
+        }
+    } else {
+        let bound = edge_start(b.x);
+        for y in b.y..c.y {
+            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step);
+        }
     }
 }
