@@ -479,7 +479,8 @@ fn slug(name: &str) -> String {
     while s.contains("--") {
         s = s.replace("--", "-");
     }
-    s.trim_matches('-').chars().take(40).collect()
+    let s: String = s.trim_matches('-').chars().take(40).collect();
+    s.trim_end_matches('-').to_string()
 }
 
 /// Measure, then write `<out>/trade.md` and its images under `<out>/trade/`.
