@@ -479,7 +479,13 @@ impl Renderer {
         let mut packet = [0u32; 12];
         for f in &self.scratch {
             let n = if f.quad { 4 } else { 3 };
-            let mut op = 0x30u32 | if f.quad { 0x08 } else { 0 };
+            // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
+            // packet, which the GPU draws without colour interpolation.
+            let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
+            let mut op = 0x20u32 | if f.quad { 0x08 } else { 0 };
+            if gouraud {
+                op |= 0x10;
+            }
             if f.texture.is_some() {
                 op |= 0x04;
             }
@@ -490,8 +496,13 @@ impl Renderer {
             for i in 0..n {
                 let [r, g, b] = f.color[i];
                 let rgb = r as u32 | (g as u32) << 8 | (b as u32) << 16;
-                packet[len] = if i == 0 { op << 24 | rgb } else { rgb };
-                len += 1;
+                if i == 0 {
+                    packet[len] = op << 24 | rgb;
+                    len += 1;
+                } else if gouraud {
+                    packet[len] = rgb;
+                    len += 1;
+                }
                 let (x, y) = f.xy[i];
                 packet[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
                 len += 1;
