@@ -149,8 +149,12 @@ fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
 /// coordinates shifted by whole texture repeats to start in the first repeat, then scaled to
 /// 0..size-1 texels and clamped to 255), tessellation.
 pub fn prepare(scene: &Scene, index: usize, level: u8) -> Vec<PreparedFace> {
-    let o = &scene.objects[index];
-    let mesh = &scene.meshes[o.mesh].mesh;
+    let Some(o) = scene.objects.get(index) else {
+        return Vec::new();
+    };
+    let Some(mesh) = scene.meshes.get(o.mesh).map(|m| &m.mesh) else {
+        return Vec::new();
+    };
     let size = o
         .texture
         .and_then(|t| scene.textures.get(t))

@@ -256,9 +256,14 @@ impl Texture {
         let mut out = vec![0u16; row * self.height as usize];
         for y in 0..self.height as usize {
             for x in 0..self.width as usize {
-                let t = self.texels[y * self.width as usize + x];
-                let slot = &mut out[y * row + x / per];
-                *slot |= t << ((x % per) * bits);
+                let t = self
+                    .texels
+                    .get(y * self.width as usize + x)
+                    .copied()
+                    .unwrap_or(0);
+                if let Some(slot) = out.get_mut(y * row + x / per) {
+                    *slot |= t << ((x % per) * bits);
+                }
             }
         }
         out

@@ -266,11 +266,12 @@ fn raster(
                     let u = (attr[0] + 0.5 + 1e-9).floor() as i32;
                     let v = (attr[1] + 0.5 + 1e-9).floor() as i32;
                     let (tw, th) = (tex.width as i32, tex.height as i32);
-                    let t = tex.texels[(v.rem_euclid(th) * tw + u.rem_euclid(tw)) as usize];
+                    let index = (v.rem_euclid(th) * tw + u.rem_euclid(tw)) as usize;
+                    let t = tex.texels.get(index).copied().unwrap_or(0);
                     let c = if tex.clut.is_empty() {
                         t
                     } else {
-                        tex.clut[t as usize & 255]
+                        tex.clut.get(t as usize).copied().unwrap_or(0)
                     };
                     if c == 0 {
                         continue;
