@@ -11,6 +11,49 @@ pub const DITHER_MATRIX: [[i32; 4]; 4] = [
     [3, -1, 2, -2],
 ];
 
+/// A 9-bit intensity (an 8-bit colour, or a modulated texel channel `(t5 * c8) >> 4`, at
+/// most 494) to its 5-bit value for one dither offset: `clamp(i + offset, 0, 255) >> 3`
+/// (gpu.md §6). Indexed with `i & 511`.
+pub type ShadeTable = [u8; 512];
+
+const fn shade_table(offset: i32) -> ShadeTable {
+    let mut t = [0u8; 512];
+    let mut i = 0;
+    while i < 512 {
+        let c = i as i32 + offset;
+        let c = if c < 0 {
+            0
+        } else if c > 255 {
+            255
+        } else {
+            c
+        };
+        t[i] = (c >> 3) as u8;
+        i += 1;
+    }
+    t
+}
+
+const fn dither_tables() -> [[ShadeTable; 4]; 4] {
+    let mut t = [[[0u8; 512]; 4]; 4];
+    let mut y = 0;
+    while y < 4 {
+        let mut x = 0;
+        while x < 4 {
+            t[y][x] = shade_table(DITHER_MATRIX[y][x]);
+            x += 1;
+        }
+        y += 1;
+    }
+    t
+}
+
+/// One [`ShadeTable`] per dither matrix cell, indexed `[y & 3][x & 3]` (gpu.md §6).
+pub static DITHER_TABLES: [[ShadeTable; 4]; 4] = dither_tables();
+
+/// The [`ShadeTable`] of undithered pixels: `min(i, 255) >> 3` (gpu.md §6).
+pub static PLAIN_TABLE: ShadeTable = shade_table(0);
+
 /// 8-bit channel to 5 bits with a dither offset: clamp(c + d, 0, 255) >> 3 (gpu.md §6).
 #[inline(always)]
 pub fn dither_channel(c: i32, offset: i32) -> u16 {
@@ -82,6 +125,22 @@ mod tests {
         assert_eq!(modulate_channel(31, 255, 0), 31);
         // (10 * 64) >> 4 = 40, + dither 3 = 43 -> 5.
         assert_eq!(modulate_channel(10, 64, 3), 5);
+    }
+
+    #[test]
+    fn tables_agree_with_the_formulas() {
+        for y in 0..4 {
+            for x in 0..4 {
+                let d = DITHER_MATRIX[y][x];
+                for (i, &c5) in DITHER_TABLES[y][x].iter().enumerate() {
+                    assert_eq!(c5 as i32, (i as i32 + d).clamp(0, 255) >> 3);
+                }
+            }
+        }
+        assert_eq!(PLAIN_TABLE[0], 0);
+        assert_eq!(PLAIN_TABLE[255], 31);
+        assert_eq!(PLAIN_TABLE[494], 31);
+        assert_eq!(PLAIN_TABLE[132], 16);
     }
 
     #[test]

@@ -82,17 +82,36 @@ pub struct Sampler<'a> {
     pub page_x: usize,
     /// Page top line.
     pub page_y: usize,
-    /// Texture window.
-    pub window: TextureWindow,
+    /// The texture window as AND/OR masks on U: `u' = (u & u_and) | u_or` (gpu.md §7).
+    pub u_and: u8,
+    /// OR mask on U.
+    pub u_or: u8,
+    /// AND mask on V.
+    pub v_and: u8,
+    /// OR mask on V.
+    pub v_or: u8,
 }
 
-impl Sampler<'_> {
+impl<'a> Sampler<'a> {
+    /// A sampler for the page at (`page_x`, `page_y`) through `window`.
+    pub fn new(clut: &'a [u16; 256], page_x: usize, page_y: usize, window: TextureWindow) -> Self {
+        Self {
+            clut,
+            page_x,
+            page_y,
+            u_and: !(window.mask_x << 3),
+            u_or: (window.offset_x & window.mask_x) << 3,
+            v_and: !(window.mask_y << 3),
+            v_or: (window.offset_y & window.mask_y) << 3,
+        }
+    }
+
     /// The texel at (u, v) for a page of kind `kind` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
     /// after the texture window; X wraps at 1024 (gpu.md §7).
     #[inline(always)]
     pub fn fetch(&self, kind: u8, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> u16 {
-        let u = self.window.apply_u(u) as usize;
-        let v = self.window.apply_v(v) as usize;
+        let u = ((u & self.u_and) | self.u_or) as usize;
+        let v = ((v & self.v_and) | self.v_or) as usize;
         let row = ((self.page_y + v) & 511) * VRAM_WIDTH;
         match kind {
             1 => {
@@ -104,6 +123,33 @@ impl Sampler<'_> {
                 self.clut[((word >> ((u & 1) * 8)) & 0xFF) as usize]
             }
             _ => vram[row + ((self.page_x + u) & 1023)],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The AND/OR form equals the fact-sheet formula for every window and coordinate.
+    #[test]
+    fn window_masks_match_formula() {
+        for mask in 0..32u8 {
+            for offset in 0..32u8 {
+                let w = TextureWindow {
+                    mask_x: mask,
+                    mask_y: offset,
+                    offset_x: offset,
+                    offset_y: mask,
+                };
+                let s = Sampler::new(&[0; 256], 0, 0, w);
+                for c in 0..=255u8 {
+                    assert_eq!((c & s.u_and) | s.u_or, w.apply_u(c));
+                    assert_eq!((c & s.v_and) | s.v_or, w.apply_v(c));
+                    let by_formula = (c as u32 & !(mask as u32 * 8)) | ((offset & mask) as u32 * 8);
+                    assert_eq!(w.apply_u(c) as u32, by_formula);
+                }
+            }
         }
     }
 }

@@ -2,7 +2,7 @@
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
 use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
-use crate::color::DITHER_MATRIX;
+use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Line;
 use crate::state::DrawState;
 use crate::{VRAM_LEN, VRAM_WIDTH};
@@ -27,9 +27,11 @@ pub(super) fn draw<
 >(
     vram: &mut [u16; VRAM_LEN],
     state: &DrawState,
-    env: &PixelEnv,
+    env_ref: &PixelEnv,
     line: &Line,
 ) {
+    // A local copy, so the pixel loop keeps it in registers.
+    let env = *env_ref;
     let [mut p0, mut p1] = line.vertices;
     p0.x = wrap11(p0.x);
     p0.y = wrap11(p0.y);
@@ -38,11 +40,12 @@ pub(super) fn draw<
     if (p1.x - p0.x).abs() >= 1024 || (p1.y - p0.y).abs() >= 512 {
         return;
     }
+    if !GOURAUD {
+        // A flat line has the command colour: the first vertex's, before any swap.
+        p1.color = p0.color;
+    }
     if p0.x > p1.x {
         core::mem::swap(&mut p0, &mut p1);
-    }
-    if !GOURAUD {
-        p1.color = p0.color;
     }
     let (dx, dy) = (p1.x - p0.x, p1.y - p0.y);
     let k = dx.abs().max(dy.abs());
@@ -74,15 +77,19 @@ pub(super) fn draw<
             && py <= area.bottom as i32
         {
             let rgb = [color[0] >> 12, color[1] >> 12, color[2] >> 12];
-            let dither = DITHER_MATRIX[(py & 3) as usize][(px & 3) as usize];
-            shade_pixel::<TEX_NONE, false, BLEND, DITHER, MASK_CHECK>(
+            let shade = if DITHER {
+                &DITHER_TABLES[(py & 3) as usize][(px & 3) as usize]
+            } else {
+                &PLAIN_TABLE
+            };
+            shade_pixel::<TEX_NONE, false, BLEND, MASK_CHECK>(
                 vram,
                 ((py & 511) as usize) * VRAM_WIDTH + (px & 1023) as usize,
                 rgb,
                 0,
                 0,
-                dither,
-                env,
+                shade,
+                &env,
             );
         }
         x = x.wrapping_add(x_step);

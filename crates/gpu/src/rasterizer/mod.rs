@@ -8,7 +8,7 @@ mod line;
 mod rectangle;
 mod triangle;
 
-use crate::color::{blend, dither_channel, modulate_channel, pack555};
+use crate::color::{ShadeTable, blend, pack555};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::state::{BlendMode, DrawState, TextureDepth};
 use crate::texture::{ClutCache, Sampler};
@@ -55,14 +55,14 @@ pub(crate) struct PixelEnv<'a> {
 
 /// Shade and write one pixel (gpu.md §6): texel fetch and transparency, modulation or raw
 /// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
-/// `rgb` holds 8-bit channels; `dither` the matrix entry for this pixel.
+/// `rgb` holds 8-bit channels; `shade` is the dither cell's table for this pixel (or the
+/// undithered one).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shade_pixel<
     const TEX: u8,
     const RAW: bool,
     const BLEND: bool,
-    const DITHER: bool,
     const MASK_CHECK: bool,
 >(
     vram: &mut [u16; VRAM_LEN],
@@ -70,20 +70,16 @@ pub(crate) fn shade_pixel<
     rgb: [i32; 3],
     u: u8,
     v: u8,
-    dither: i32,
+    shade: &ShadeTable,
     env: &PixelEnv,
 ) {
     let dst = vram[index & (VRAM_LEN - 1)];
     if MASK_CHECK && dst & 0x8000 != 0 {
         return;
     }
-    let d = if DITHER { dither } else { 0 };
+    let c5 = |i: i32| shade[(i & 511) as usize] as u16;
     let (color, semi, bit15) = if TEX == TEX_NONE {
-        let c = pack555(
-            dither_channel(rgb[0], d),
-            dither_channel(rgb[1], d),
-            dither_channel(rgb[2], d),
-        );
+        let c = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
         (c, BLEND, 0)
     } else {
         let t = env.sampler.fetch(TEX, vram, u, v);
@@ -93,10 +89,12 @@ pub(crate) fn shade_pixel<
         let c = if RAW {
             t & 0x7FFF
         } else {
+            // (gpu.md §6) c5 = clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3.
+            let t = t as i32;
             pack555(
-                modulate_channel(t & 0x1F, rgb[0], d),
-                modulate_channel((t >> 5) & 0x1F, rgb[1], d),
-                modulate_channel((t >> 10) & 0x1F, rgb[2], d),
+                c5(((t & 0x1F) * rgb[0]) >> 4),
+                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
+                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
             )
         };
         (c, BLEND && t & 0x8000 != 0, t & 0x8000)
@@ -115,7 +113,7 @@ pub(crate) const fn wrap11(v: i32) -> i32 {
     (v << 21) >> 21
 }
 
-/// The CLUT an untextured primitive carries (never read).
+/// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
 
 fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
@@ -137,12 +135,7 @@ fn env<'a>(
     PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: blend.unwrap_or_default(),
-        sampler: Sampler {
-            clut,
-            page_x,
-            page_y,
-            window: state.window,
-        },
+        sampler: Sampler::new(clut, page_x, page_y, state.window),
     }
 }
 
@@ -177,12 +170,7 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
-        sampler: Sampler {
-            clut: &NO_CLUT,
-            page_x: 0,
-            page_y: 0,
-            window: state.window,
-        },
+        sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
     };
     let (g, b, d, m) = (
         line.gouraud,

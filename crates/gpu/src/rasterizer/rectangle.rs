@@ -2,6 +2,7 @@
 //! wrapped at 256 (decremented when flipped), clipped to the drawing area.
 
 use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
 use crate::state::DrawState;
 use crate::{VRAM_LEN, VRAM_WIDTH};
@@ -10,9 +11,11 @@ use crate::{VRAM_LEN, VRAM_WIDTH};
 pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
     vram: &mut [u16; VRAM_LEN],
     state: &DrawState,
-    env: &PixelEnv,
+    env_ref: &PixelEnv,
     rect: &Rectangle,
 ) {
+    // A local copy, so the pixel loop keeps it in registers.
+    let env = *env_ref;
     let o = rect.origin;
     let (x0, y0) = (wrap11(o.x), wrap11(o.y));
     let area = state.area;
@@ -24,6 +27,11 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
         return;
     }
     let flat = o.color.map(|c| c as i32);
+    // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
+    let du: u8 = if rect.flip_x { 255 } else { 1 };
+    let dv: u8 = if rect.flip_y { 255 } else { 1 };
+    // Texel at the first drawn column: u0 + (x_start - x0) steps.
+    let u_start = o.u.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
     for y in y_start..y_end {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
@@ -37,28 +45,19 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             }
             continue;
         }
-        let dy = (y - y0) as u8;
-        let v = if rect.flip_y {
-            o.v.wrapping_sub(dy)
-        } else {
-            o.v.wrapping_add(dy)
-        };
+        let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));
+        let mut u = u_start;
         for x in x_start..x_end {
-            let dx = (x - x0) as u8;
-            let u = if rect.flip_x {
-                o.u.wrapping_sub(dx)
-            } else {
-                o.u.wrapping_add(dx)
-            };
-            shade_pixel::<TEX, RAW, BLEND, false, MASK_CHECK>(
+            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
                 vram,
                 row + x as usize,
                 flat,
                 u,
                 v,
-                0,
-                env,
+                &PLAIN_TABLE,
+                &env,
             );
+            u = u.wrapping_add(du);
         }
     }
 }

@@ -3,7 +3,7 @@
 //! vertex.
 
 use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
-use crate::color::DITHER_MATRIX;
+use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
 use crate::{VRAM_LEN, VRAM_WIDTH};
@@ -162,7 +162,10 @@ pub(super) fn draw<
                     .wrapping_add(grads[i].1.wrapping_mul(dy));
             }
         }
-        let dither_row = DITHER_MATRIX[(y & 3) as usize];
+        // Per-span copies, so the pixel loop keeps them in registers.
+        let step = grads.map(|g| g.0);
+        let env = *env;
+        let dither_row = &DITHER_TABLES[(y & 3) as usize];
         for x in x_start..x_end {
             let rgb = if GOURAUD {
                 [
@@ -173,18 +176,22 @@ pub(super) fn draw<
             } else {
                 flat
             };
-            shade_pixel::<TEX, RAW, BLEND, DITHER, MASK_CHECK>(
+            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
                 vram,
                 row + x as usize,
                 rgb,
                 (acc[3] >> 24) as u8,
                 (acc[4] >> 24) as u8,
-                dither_row[(x & 3) as usize],
-                env,
+                if DITHER {
+                    &dither_row[(x & 3) as usize]
+                } else {
+                    &PLAIN_TABLE
+                },
+                &env,
             );
             for i in 0..5 {
                 if used(i) {
-                    acc[i] = acc[i].wrapping_add(grads[i].0);
+                    acc[i] = acc[i].wrapping_add(step[i]);
                 }
             }
         }
