@@ -107,6 +107,35 @@ pub(crate) fn shade_pixel<
     vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
 }
 
+/// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (gpu.md §3.4, §4).
+/// `steps` > 0.
+pub(crate) fn step_away_from_zero(delta: i32, steps: i32) -> i64 {
+    let n = (delta as i64) << 32;
+    let bias = steps as i64 - 1;
+    let n = if n < 0 { n - bias } else { n + bias };
+    n / steps as i64
+}
+
+/// Fill `[x_start, x_end)` of the row starting at `row` with one flat colour: the whole
+/// pixel pipeline of an opaque, unmasked, undithered flat primitive.
+pub(crate) fn fill_flat_span(
+    vram: &mut [u16; VRAM_LEN],
+    row: usize,
+    x_start: i32,
+    x_end: i32,
+    flat: [i32; 3],
+    mask_or: u16,
+) {
+    let c = pack555(
+        (flat[0] >> 3) as u16,
+        (flat[1] >> 3) as u16,
+        (flat[2] >> 3) as u16,
+    ) | mask_or;
+    if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
+        s.fill(c);
+    }
+}
+
 /// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
