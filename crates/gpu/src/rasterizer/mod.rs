@@ -5,6 +5,7 @@
 //! opaque triangle runs a loop with no texture, blend, dither or mask code in it.
 
 mod line;
+pub mod precise;
 mod rectangle;
 mod triangle;
 
@@ -188,6 +189,32 @@ pub fn draw_triangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, t
         1 => dispatch!(draw(vram, state, &env, tri); [1,]; g, raw, b, d, m),
         2 => dispatch!(draw(vram, state, &env, tri); [2,]; g, raw, b, d, m),
         _ => dispatch!(draw(vram, state, &env, tri); [3,]; g, raw, b, d, m),
+    }
+}
+
+/// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
+/// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
+/// The triangle's own vertex positions are ignored in favour of `at`.
+pub fn draw_triangle_precise(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    tri: &Triangle,
+    at: &[precise::PreciseVertex; 3],
+    perspective: bool,
+) {
+    let Some(vram) = vram_array(vram) else {
+        return;
+    };
+    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let raw = tri.texture.is_some_and(|t| t.raw);
+    let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
+    use precise::draw;
+    match texture_kind(tri.texture.as_ref()) {
+        0 => dispatch!(draw(vram, state, &env, tri, at); [0,]; false, b, m, false),
+        1 => dispatch!(draw(vram, state, &env, tri, at); [1,]; raw, b, m, p),
+        2 => dispatch!(draw(vram, state, &env, tri, at); [2,]; raw, b, m, p),
+        _ => dispatch!(draw(vram, state, &env, tri, at); [3,]; raw, b, m, p),
     }
 }
 
