@@ -7,6 +7,8 @@ use crate::scene::Scene;
 use crate::tessellate::{PreparedFace, PreparedVertex, tessellate};
 use crate::vram_alloc::{Placement, VramAllocator, VramFull};
 use gpu::ordering_table::OrderingTable;
+use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
+use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
 use gte::typed::{Geometry, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Flag};
@@ -27,6 +29,19 @@ pub struct PipelineOptions {
     pub dither: Option<bool>,
     /// GTE divide (hardware UNR by default).
     pub divide_mode: DivideMode,
+    /// Non-hardware: keep 4 fractional bits of each screen position (the GTE's 16.16 result
+    /// before its truncation to whole pixels) and rasterize with the precise path.
+    pub subpixel: bool,
+    /// Non-hardware: perspective-correct texture coordinates (the precise path with 1/SZ
+    /// per vertex) instead of the GPU's affine stepping.
+    pub perspective_uv: bool,
+}
+
+impl PipelineOptions {
+    /// Whether polygons go through the non-hardware precise rasterizer.
+    pub fn precise(&self) -> bool {
+        self.subpixel || self.perspective_uv
+    }
 }
 
 /// Why a renderer could not be built.
@@ -102,6 +117,8 @@ struct ProjectedFace {
     ot_index: u16,
     texture: Option<(u32, u32)>,
     blend: Option<u8>,
+    /// Sub-pixel positions (without the drawing offset) and 1/SZ, for the precise path.
+    precise: [PreciseVertex; 4],
 }
 
 const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
@@ -251,6 +268,74 @@ pub struct Renderer {
     geometry: Geometry,
     scratch: Vec<ProjectedFace>,
     display: DisplayArea,
+    /// CLUT cache of the precise path (the GPU's own is private to it).
+    clut: ClutCache,
+}
+
+/// Draw one polygon through the non-hardware precise rasterizer: the same colours, texture,
+/// blending and dithering a GP0 packet would carry, at sub-pixel positions.
+fn draw_precise(
+    gpu: &mut Gpu,
+    state: &gpu::state::DrawState,
+    clut: &mut ClutCache,
+    f: &ProjectedFace,
+    offset_y: i32,
+    dither: bool,
+    perspective: bool,
+) {
+    let texture = f.texture.map(|(clut_attr, tpage)| gpu::primitive::Texture {
+        page_x: ((tpage & 0xF) * 64) as u16,
+        page_y: (((tpage >> 4) & 1) * 256) as u16,
+        depth: match (tpage >> 7) & 3 {
+            0 => gpu::state::TextureDepth::Clut4,
+            1 => gpu::state::TextureDepth::Clut8,
+            _ => gpu::state::TextureDepth::Direct15,
+        },
+        clut_x: ((clut_attr & 0x3F) * 16) as u16,
+        clut_y: ((clut_attr >> 6) & 0x1FF) as u16,
+        raw: false,
+    });
+    let n = if f.quad { 4 } else { 3 };
+    let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
+    let blend = f.blend.map(|b| match b {
+        0 => gpu::state::BlendMode::Average,
+        1 => gpu::state::BlendMode::Add,
+        2 => gpu::state::BlendMode::Subtract,
+        _ => gpu::state::BlendMode::AddQuarter,
+    });
+    let vertex = |k: usize| gpu::primitive::Vertex {
+        x: f.xy[k].0 as i32,
+        y: f.xy[k].1 as i32,
+        color: f.color[k],
+        u: f.uv[k].0,
+        v: f.uv[k].1,
+    };
+    let at = |k: usize| PreciseVertex {
+        y: f.precise[k].y + (offset_y << SUBPIXEL_BITS),
+        ..f.precise[k]
+    };
+    let triangles: &[[usize; 3]] = if f.quad {
+        &[[0, 1, 2], [1, 2, 3]]
+    } else {
+        &[[0, 1, 2]]
+    };
+    for t in triangles {
+        let tri = gpu::primitive::Triangle {
+            vertices: t.map(vertex),
+            gouraud,
+            texture,
+            blend,
+            dither: dither && gpu::primitive::dither_applies(gouraud, texture.is_some(), false),
+        };
+        gpu::rasterizer::draw_triangle_precise(
+            gpu.vram_mut(),
+            state,
+            clut,
+            &tri,
+            &t.map(at),
+            perspective,
+        );
+    }
 }
 
 impl Renderer {
@@ -319,6 +404,7 @@ impl Renderer {
             gpu,
             geometry,
             display,
+            clut: ClutCache::default(),
         })
     }
 
@@ -465,7 +551,34 @@ impl Renderer {
                     g.average_z3([sz[0], sz[1], sz[2]])
                 };
                 let uv = v.map(|p| (p.uv[0].round() as u8, p.uv[1].round() as u8));
+                let mut precise = [PreciseVertex::default(); 4];
+                if self.options.precise() {
+                    for k in 0..n {
+                        let (mut x, mut y) = (
+                            (xy[k].0 as i32) << SUBPIXEL_BITS,
+                            (xy[k].1 as i32) << SUBPIXEL_BITS,
+                        );
+                        if self.options.subpixel {
+                            // The GTE's screen position before truncation: q*IR + OF in 16.16.
+                            let q = g.project(vector(v[k].position));
+                            let ir1 = g.gte().read_data(9) as i32 as i64;
+                            let ir2 = g.gte().read_data(10) as i32 as i64;
+                            let (qd, _) = gte::unr::divide(self.options.divide_mode, cam.h, q.sz);
+                            let fx = qd as i64 * ir1 + ((w as i64 / 2) << 16);
+                            let fy = qd as i64 * ir2 + ((h as i64 / 2) << 16);
+                            let limit = 0x400i64 << SUBPIXEL_BITS;
+                            x = (fx >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
+                            y = (fy >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
+                        }
+                        precise[k] = PreciseVertex {
+                            x,
+                            y,
+                            inv_z: (1u32 << 24) / (sz[k] as u32).max(1),
+                        };
+                    }
+                }
                 self.scratch.push(ProjectedFace {
+                    precise,
                     xy,
                     color,
                     uv,
@@ -481,6 +594,16 @@ impl Renderer {
     fn ot_stage(&mut self, stats: &mut FrameStats) {
         self.ot.clear();
         let mut packet = [0u32; 12];
+        if self.options.precise() {
+            // The precise path links each polygon's index instead of a GP0 packet: the same
+            // depth order, drawn by the non-hardware rasterizer in `gpu_stage`.
+            for (i, f) in self.scratch.iter().enumerate() {
+                if self.ot.insert(f.ot_index as usize, &[i as u32]).is_ok() {
+                    stats.drawn += 1;
+                }
+            }
+            return;
+        }
         for f in &self.scratch {
             let n = if f.quad { 4 } else { 3 };
             // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
@@ -547,7 +670,18 @@ impl Renderer {
         ]);
         // Bad links cannot occur in a table this renderer built; a walk error leaves the
         // frame partly drawn rather than stopping the renderer.
-        let _ = self.ot.walk_into(gpu);
+        if self.options.precise() {
+            let state = *gpu.draw_state();
+            let (scratch, clut, perspective) =
+                (&self.scratch, &mut self.clut, self.options.perspective_uv);
+            let _ = self.ot.walk(|words| {
+                if let Some(f) = words.first().and_then(|&i| scratch.get(i as usize)) {
+                    draw_precise(gpu, &state, clut, f, buffer_y as i32, dither, perspective);
+                }
+            });
+        } else {
+            let _ = self.ot.walk_into(gpu);
+        }
         gpu.gp1(0x0500_0000 | buffer_y << 10);
         self.display = gpu.display_area();
         self.display.height = screen.height;

@@ -101,6 +101,16 @@ fn trade_face_on_accuracy_columns() {
     let exact = rows.iter().find(|r| r.name == "divide: exact").unwrap();
     assert_eq!((exact.differing_pixels, exact.texel_max), (0, 0.0));
     assert_eq!(hw.jitter, 0.0, "nothing moves");
+    // Face-on with whole-pixel corners, the precise path agrees too: sub-pixel positions
+    // equal the snapped ones and perspective weights are all equal.
+    for name in [
+        "sub-pixel vertices (non-hardware)",
+        "perspective-correct UVs (non-hardware)",
+        "sub-pixel + perspective (non-hardware)",
+    ] {
+        let r = rows.iter().find(|r| r.name == name).unwrap();
+        assert_eq!(r.texel_max, 0.0, "{name}");
+    }
 }
 
 /// `wobble trade` runs on a small scene and writes the table, images and plot.
