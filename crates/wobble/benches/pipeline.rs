@@ -82,6 +82,20 @@ fn tessellated(mut scene: Scene, level: u8) -> Scene {
     scene
 }
 
+/// The sphere scene with nothing but flat polygons: no texture, no light (one colour per
+/// polygon, so Gouraud-free G3/G4 packets with equal colours), no dithering, opaque.
+pub fn flat_sphere_scene() -> Scene {
+    let mut s = sphere_scene();
+    s.light = None;
+    s.screen.dither = false;
+    for o in &mut s.objects {
+        o.texture = None;
+        o.blend = None;
+        o.color = [200, 120, 60];
+    }
+    s
+}
+
 fn split(name: &str, scene: Scene) {
     let mut r = Renderer::new(scene, PipelineOptions::default()).unwrap();
     let frames = 500;
@@ -113,6 +127,7 @@ fn frames(c: &mut Criterion) {
         ),
         ("sphere_2976_triangles", sphere_scene()),
         ("wall_3042_triangles", wall_scene()),
+        ("sphere_2976_triangles_flat_only", flat_sphere_scene()),
     ] {
         assert!(
             name != "sphere_2976_triangles"

@@ -31,6 +31,24 @@ enum Command {
     Replay(ReplayArgs),
     /// Convert a raw VRAM file to PNG: whole VRAM, a display area, or a texture page.
     Dump(DumpArgs),
+    /// Measure what each accuracy knob costs in time and in error against an f64 reference
+    /// renderer; writes OUT/trade.md and images under OUT/trade/.
+    Trade(TradeArgs),
+}
+
+#[derive(clap::Args)]
+struct TradeArgs {
+    /// Scene file (TOML); the built-in default scene when omitted.
+    scene: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, default_value = "trade-report")]
+    out: PathBuf,
+    /// Consecutive frames measured (2..=600).
+    #[arg(long, default_value_t = 24)]
+    frames: u32,
+    /// Timing repetitions; the median is reported (1..=50).
+    #[arg(long, default_value_t = 5)]
+    repeats: u32,
 }
 
 #[derive(Subcommand)]
@@ -214,6 +232,35 @@ fn dump(args: &DumpArgs) -> Result<()> {
     Ok(())
 }
 
+fn trade(args: &TradeArgs) -> Result<()> {
+    if !(2..=600).contains(&args.frames) || !(1..=50).contains(&args.repeats) {
+        return Err("--frames must be 2..=600 and --repeats 1..=50".into());
+    }
+    let (scene, name) = match &args.scene {
+        Some(p) => (
+            wobble::scene::Scene::load(p).map_err(|e| e.to_string())?,
+            p.display().to_string(),
+        ),
+        None => (
+            wobble::scene::Scene::default_scene(),
+            "the default scene".to_string(),
+        ),
+    };
+    let settings = wobble::trade::TradeSettings {
+        frames: args.frames,
+        repeats: args.repeats,
+    };
+    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out)?;
+    for r in &rows {
+        println!(
+            "{:<50} {:>8.3} ms {:>6.2}x  texel error mean {:.3} max {:.2}  jitter {:.3} px",
+            r.name, r.frame_ms, r.ratio, r.texel_mean, r.texel_max, r.jitter
+        );
+    }
+    println!("wrote {}", args.out.join("trade.md").display());
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
@@ -226,6 +273,7 @@ fn main() -> ExitCode {
         } => gte_replay(file, *emit),
         Command::Replay(args) => replay(args).map(|()| true),
         Command::Dump(args) => dump(args).map(|()| true),
+        Command::Trade(args) => trade(args).map(|()| true),
     };
     match result {
         Ok(true) => ExitCode::SUCCESS,

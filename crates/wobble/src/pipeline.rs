@@ -8,6 +8,8 @@ use crate::scene::Scene;
 use crate::tessellate::{MAX_LEVEL, PreparedFace, PreparedVertex, SplitStack, UV_FRACTION_BITS};
 use crate::vram_alloc::{Placement, VramAllocator, VramFull};
 use gpu::ordering_table::OrderingTable;
+use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
+use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Flag};
@@ -39,6 +41,19 @@ pub struct PipelineOptions {
     pub dither: Option<bool>,
     /// GTE divide (hardware UNR by default).
     pub divide_mode: DivideMode,
+    /// Non-hardware: keep 4 fractional bits of each screen position (the GTE's 16.16 result
+    /// before its truncation to whole pixels) and rasterize with the precise path.
+    pub subpixel: bool,
+    /// Non-hardware: perspective-correct texture coordinates (the precise path with 1/SZ
+    /// per vertex) instead of the GPU's affine stepping.
+    pub perspective_uv: bool,
+}
+
+impl PipelineOptions {
+    /// Whether polygons go through the non-hardware precise rasterizer.
+    pub fn precise(&self) -> bool {
+        self.subpixel || self.perspective_uv
+    }
 }
 
 impl Default for PipelineOptions {
@@ -48,6 +63,8 @@ impl Default for PipelineOptions {
             split_extent: DEFAULT_SPLIT_EXTENT,
             dither: None,
             divide_mode: DivideMode::default(),
+            subpixel: false,
+            perspective_uv: false,
         }
     }
 }
@@ -126,6 +143,8 @@ struct ProjectedFace {
     ot_index: u16,
     texture: Option<(u32, u32)>,
     blend: Option<u8>,
+    /// Sub-pixel positions (without the drawing offset) and 1/SZ, for the precise path.
+    precise: [PreciseVertex; 4],
 }
 
 /// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
@@ -137,7 +156,7 @@ const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
     .union(Flag::SZ3_OTZ_SATURATED);
 
 /// Degrees to 1/4096 turn.
-fn angle(deg: f64) -> i32 {
+pub fn angle(deg: f64) -> i32 {
     (deg.rem_euclid(360.0) * 4096.0 / 360.0).round() as i32
 }
 
@@ -176,7 +195,7 @@ fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
 /// normals in 1.3.12, per-face texel coordinates (each face's texture coordinates shifted by
 /// whole texture repeats to start in the first repeat, then scaled to 0..size-1 texels and
 /// clamped to 255) in 8.8 fixed point.
-fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
+pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
     let Some(o) = scene.objects.get(index) else {
         return Vec::new();
     };
@@ -305,6 +324,48 @@ fn transform(g: &mut Geometry, face: &PreparedFace, (w, h): (i32, i32)) -> Verdi
     }
 }
 
+/// The object's rotation in degrees at `frame`.
+pub fn object_rotation(object: &crate::scene::Object, frame: u32) -> [f64; 3] {
+    let f = frame as f64;
+    [
+        object.rotation[0] + object.spin[0] * f,
+        object.rotation[1] + object.spin[1] * f,
+        object.rotation[2] + object.spin[2] * f,
+    ]
+}
+
+/// RT and TR for an object at `frame`: the camera rotation times the object rotation, and
+/// the object's position in camera space (what the pipeline loads into the GTE).
+pub fn object_transform(
+    scene: &Scene,
+    object: &crate::scene::Object,
+    frame: u32,
+) -> (Matrix, Translation) {
+    let cam = &scene.camera;
+    let view = Matrix::rotation(
+        angle(cam.rotation[0]),
+        angle(cam.rotation[1]),
+        angle(cam.rotation[2]),
+    );
+    let r = object_rotation(object, frame);
+    let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
+    let relative = [
+        object.position[0] - cam.position[0],
+        object.position[1] - cam.position[1],
+        object.position[2] - cam.position[2],
+    ];
+    let t = apply(&view, relative);
+    let clamp32 = |v: f64| v.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32;
+    (
+        view.multiply(&rot),
+        Translation {
+            x: clamp32(t[0]),
+            y: clamp32(t[1]),
+            z: clamp32(t[2]),
+        },
+    )
+}
+
 /// Renders a scene frame by frame into a GPU's VRAM.
 pub struct Renderer {
     scene: Scene,
@@ -317,6 +378,74 @@ pub struct Renderer {
     stack: SplitStack,
     capacity: usize,
     display: DisplayArea,
+    /// CLUT cache of the precise path (the GPU's own is private to it).
+    clut: ClutCache,
+}
+
+/// Draw one polygon through the non-hardware precise rasterizer: the same colours, texture,
+/// blending and dithering a GP0 packet would carry, at sub-pixel positions.
+fn draw_precise(
+    gpu: &mut Gpu,
+    state: &gpu::state::DrawState,
+    clut: &mut ClutCache,
+    f: &ProjectedFace,
+    offset_y: i32,
+    dither: bool,
+    perspective: bool,
+) {
+    let texture = f.texture.map(|(clut_attr, tpage)| gpu::primitive::Texture {
+        page_x: ((tpage & 0xF) * 64) as u16,
+        page_y: (((tpage >> 4) & 1) * 256) as u16,
+        depth: match (tpage >> 7) & 3 {
+            0 => gpu::state::TextureDepth::Clut4,
+            1 => gpu::state::TextureDepth::Clut8,
+            _ => gpu::state::TextureDepth::Direct15,
+        },
+        clut_x: ((clut_attr & 0x3F) * 16) as u16,
+        clut_y: ((clut_attr >> 6) & 0x1FF) as u16,
+        raw: false,
+    });
+    let n = if f.quad { 4 } else { 3 };
+    let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
+    let blend = f.blend.map(|b| match b {
+        0 => gpu::state::BlendMode::Average,
+        1 => gpu::state::BlendMode::Add,
+        2 => gpu::state::BlendMode::Subtract,
+        _ => gpu::state::BlendMode::AddQuarter,
+    });
+    let vertex = |k: usize| gpu::primitive::Vertex {
+        x: f.xy[k].0 as i32,
+        y: f.xy[k].1 as i32,
+        color: f.color[k],
+        u: f.uv[k].0,
+        v: f.uv[k].1,
+    };
+    let at = |k: usize| PreciseVertex {
+        y: f.precise[k].y + (offset_y << SUBPIXEL_BITS),
+        ..f.precise[k]
+    };
+    let triangles: &[[usize; 3]] = if f.quad {
+        &[[0, 1, 2], [1, 2, 3]]
+    } else {
+        &[[0, 1, 2]]
+    };
+    for t in triangles {
+        let tri = gpu::primitive::Triangle {
+            vertices: t.map(vertex),
+            gouraud,
+            texture,
+            blend,
+            dither: dither && gpu::primitive::dither_applies(gouraud, texture.is_some(), false),
+        };
+        gpu::rasterizer::draw_triangle_precise(
+            gpu.vram_mut(),
+            state,
+            clut,
+            &tri,
+            &t.map(at),
+            perspective,
+        );
+    }
 }
 
 impl Renderer {
@@ -416,6 +545,7 @@ impl Renderer {
             gpu,
             geometry,
             display,
+            clut: ClutCache::default(),
         })
     }
 
@@ -465,16 +595,12 @@ impl Renderer {
         let scene = &self.scene;
         let (w, h) = (scene.screen.width as i32, scene.screen.height as i32);
         let cam = &scene.camera;
-        let view = Matrix::rotation(
-            angle(cam.rotation[0]),
-            angle(cam.rotation[1]),
-            angle(cam.rotation[2]),
-        );
         let g = &mut self.geometry;
         let stack = &mut self.stack;
         let scratch = &mut self.scratch;
         let capacity = self.capacity;
         let split_extent = i32::from(self.options.split_extent);
+        let options = self.options;
         let (dqa, dqb) = scene
             .fog
             .and_then(|f| f.coefficients(cam.h))
@@ -492,25 +618,11 @@ impl Renderer {
             g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
         }
         for (object, prepared) in scene.objects.iter().zip(&self.objects) {
-            let f = frame as f64;
-            let rot = Matrix::rotation(
-                angle(object.rotation[0] + object.spin[0] * f),
-                angle(object.rotation[1] + object.spin[1] * f),
-                angle(object.rotation[2] + object.spin[2] * f),
-            );
-            let relative = [
-                object.position[0] - cam.position[0],
-                object.position[1] - cam.position[1],
-                object.position[2] - cam.position[2],
-            ];
-            let t = apply(&view, relative);
-            let clamp32 = |v: f64| v.round().clamp(i32::MIN as f64, i32::MAX as f64) as i32;
-            g.set_rotation(&view.multiply(&rot));
-            g.set_translation(Translation {
-                x: clamp32(t[0]),
-                y: clamp32(t[1]),
-                z: clamp32(t[2]),
-            });
+            let r = object_rotation(object, frame);
+            let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
+            let (rt, tr) = object_transform(scene, object, frame);
+            g.set_rotation(&rt);
+            g.set_translation(tr);
             if let Some(light) = &scene.light {
                 // LLM row = -(light direction) in object space: (R^T (-d))^T.
                 let d = light.direction;
@@ -597,7 +709,36 @@ impl Renderer {
                     } else {
                         g.average_z3([sz[0], sz[1], sz[2]])
                     };
+                    let mut precise = [PreciseVertex::default(); 4];
+                    if options.precise() {
+                        let n = if face.quad { 4 } else { 3 };
+                        for k in 0..n {
+                            let (mut x, mut y) = (
+                                (xy[k].0 as i32) << SUBPIXEL_BITS,
+                                (xy[k].1 as i32) << SUBPIXEL_BITS,
+                            );
+                            if options.subpixel {
+                                // The GTE's screen position before truncation: q*IR + OF
+                                // in 16.16, kept to 1/16 pixel.
+                                let q = g.project(v[k].position);
+                                let ir1 = g.gte().read_data(9) as i32 as i64;
+                                let ir2 = g.gte().read_data(10) as i32 as i64;
+                                let (qd, _) = gte::unr::divide(options.divide_mode, cam.h, q.sz);
+                                let fx = qd as i64 * ir1 + ((w as i64 / 2) << 16);
+                                let fy = qd as i64 * ir2 + ((h as i64 / 2) << 16);
+                                let limit = 0x400i64 << SUBPIXEL_BITS;
+                                x = (fx >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
+                                y = (fy >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
+                            }
+                            precise[k] = PreciseVertex {
+                                x,
+                                y,
+                                inv_z: (1u32 << 24) / (sz[k] as u32).max(1),
+                            };
+                        }
+                    }
                     scratch.push(ProjectedFace {
+                        precise,
                         xy,
                         color,
                         uv: v.map(|p| p.texel()),
@@ -615,9 +756,25 @@ impl Renderer {
         let dither = self.options.dither.unwrap_or(self.scene.screen.dither);
         self.ot.clear();
         let mut packet = [0u32; 12];
+        if self.options.precise() {
+            // The precise path links each polygon's index instead of a GP0 packet: the same
+            // depth order, drawn by the non-hardware rasterizer in `gpu_stage`.
+            for (i, f) in self.scratch.iter().enumerate() {
+                if self.ot.insert(f.ot_index as usize, &[i as u32]).is_ok() {
+                    stats.drawn += 1;
+                }
+            }
+            return;
+        }
         for f in &self.scratch {
             let n = if f.quad { 4 } else { 3 };
-            let mut op = 0x30u32 | if f.quad { 0x08 } else { 0 };
+            // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
+            // packet, which the GPU draws without colour interpolation.
+            let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
+            let mut op = 0x20u32 | if f.quad { 0x08 } else { 0 };
+            if gouraud {
+                op |= 0x10;
+            }
             if f.texture.is_some() {
                 op |= 0x04;
             }
@@ -628,8 +785,13 @@ impl Renderer {
             for i in 0..n {
                 let [r, g, b] = f.color[i];
                 let rgb = r as u32 | (g as u32) << 8 | (b as u32) << 16;
-                packet[len] = if i == 0 { op << 24 | rgb } else { rgb };
-                len += 1;
+                if i == 0 {
+                    packet[len] = op << 24 | rgb;
+                    len += 1;
+                } else if gouraud {
+                    packet[len] = rgb;
+                    len += 1;
+                }
                 let (x, y) = f.xy[i];
                 packet[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
                 len += 1;
@@ -678,7 +840,18 @@ impl Renderer {
         ]);
         // Bad links cannot occur in a table this renderer built; a walk error leaves the
         // frame partly drawn rather than stopping the renderer.
-        let _ = self.ot.walk_into(gpu);
+        if self.options.precise() {
+            let state = *gpu.draw_state();
+            let (scratch, clut, perspective) =
+                (&self.scratch, &mut self.clut, self.options.perspective_uv);
+            let _ = self.ot.walk(|words| {
+                if let Some(f) = words.first().and_then(|&i| scratch.get(i as usize)) {
+                    draw_precise(gpu, &state, clut, f, buffer_y as i32, dither, perspective);
+                }
+            });
+        } else {
+            let _ = self.ot.walk_into(gpu);
+        }
         gpu.gp1(0x0500_0000 | buffer_y << 10);
         self.display = gpu.display_area();
         self.display.height = screen.height;

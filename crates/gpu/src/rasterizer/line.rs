@@ -9,13 +9,7 @@ use crate::{VRAM_LEN, VRAM_WIDTH};
 
 /// Per-point step of a 32.32 coordinate over `k` steps, rounded away from zero.
 fn step(delta: i32, k: i32) -> i64 {
-    let n = (delta as i64) << 32;
-    let n = if n < 0 {
-        n - (k as i64 - 1)
-    } else {
-        n + (k as i64 - 1)
-    };
-    n / k as i64
+    super::step_away_from_zero(delta, k)
 }
 
 /// Draw with the pixel pipeline fixed by the const parameters.

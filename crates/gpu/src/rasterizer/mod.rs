@@ -5,6 +5,7 @@
 //! opaque triangle runs a loop with no texture, blend, dither or mask code in it.
 
 mod line;
+pub mod precise;
 mod rectangle;
 mod triangle;
 
@@ -107,6 +108,35 @@ pub(crate) fn shade_pixel<
     vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
 }
 
+/// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (gpu.md §3.4, §4).
+/// `steps` > 0.
+pub(crate) fn step_away_from_zero(delta: i32, steps: i32) -> i64 {
+    let n = (delta as i64) << 32;
+    let bias = steps as i64 - 1;
+    let n = if n < 0 { n - bias } else { n + bias };
+    n / steps as i64
+}
+
+/// Fill `[x_start, x_end)` of the row starting at `row` with one flat colour: the whole
+/// pixel pipeline of an opaque, unmasked, undithered flat primitive.
+pub(crate) fn fill_flat_span(
+    vram: &mut [u16; VRAM_LEN],
+    row: usize,
+    x_start: i32,
+    x_end: i32,
+    flat: [i32; 3],
+    mask_or: u16,
+) {
+    let c = pack555(
+        (flat[0] >> 3) as u16,
+        (flat[1] >> 3) as u16,
+        (flat[2] >> 3) as u16,
+    ) | mask_or;
+    if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
+        s.fill(c);
+    }
+}
+
 /// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
@@ -159,6 +189,32 @@ pub fn draw_triangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, t
         1 => dispatch!(draw(vram, state, &env, tri); [1,]; g, raw, b, d, m),
         2 => dispatch!(draw(vram, state, &env, tri); [2,]; g, raw, b, d, m),
         _ => dispatch!(draw(vram, state, &env, tri); [3,]; g, raw, b, d, m),
+    }
+}
+
+/// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
+/// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
+/// The triangle's own vertex positions are ignored in favour of `at`.
+pub fn draw_triangle_precise(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    tri: &Triangle,
+    at: &[precise::PreciseVertex; 3],
+    perspective: bool,
+) {
+    let Some(vram) = vram_array(vram) else {
+        return;
+    };
+    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let raw = tri.texture.is_some_and(|t| t.raw);
+    let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
+    use precise::draw;
+    match texture_kind(tri.texture.as_ref()) {
+        0 => dispatch!(draw(vram, state, &env, tri, at); [0,]; false, b, m, false),
+        1 => dispatch!(draw(vram, state, &env, tri, at); [1,]; raw, b, m, p),
+        2 => dispatch!(draw(vram, state, &env, tri, at); [2,]; raw, b, m, p),
+        _ => dispatch!(draw(vram, state, &env, tri, at); [3,]; raw, b, m, p),
     }
 }
 

@@ -35,14 +35,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     for y in y_start..y_end {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
-            let c = crate::color::pack555(
-                (flat[0] >> 3) as u16,
-                (flat[1] >> 3) as u16,
-                (flat[2] >> 3) as u16,
-            ) | env.mask_or;
-            if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-                s.fill(c);
-            }
+            super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
             continue;
         }
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));

@@ -22,13 +22,7 @@ fn edge_start(x: i32) -> i64 {
 
 /// An edge's step per line, rounded away from zero (gpu.md §3.4). `dy` > 0.
 fn edge_step(dx: i32, dy: i32) -> i64 {
-    let n = (dx as i64) << 32;
-    let n = if n < 0 {
-        n - (dy as i64 - 1)
-    } else {
-        n + (dy as i64 - 1)
-    };
-    n / dy as i64
+    super::step_away_from_zero(dx, dy)
 }
 
 /// d/dx and d/dy of one attribute in 8.24 (gpu.md §3.6), i32 maths with truncating division.
@@ -142,14 +136,7 @@ pub(super) fn draw<
         }
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
-            let c = crate::color::pack555(
-                (flat[0] >> 3) as u16,
-                (flat[1] >> 3) as u16,
-                (flat[2] >> 3) as u16,
-            ) | env.mask_or;
-            if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-                s.fill(c);
-            }
+            super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
             return;
         }
         let dx = x_start.wrapping_sub(cv.x) as u32;

@@ -1,0 +1,309 @@
+//! The reference renderer: the same scene drawn the way the artist meant it, in f64, for
+//! measuring what the PS1's shortcuts cost. Exact trigonometry and division, sub-pixel
+//! vertex positions, perspective-correct texture coordinates and colours, polygons clipped
+//! (not dropped) at a near plane, a z-buffer instead of painter's order, no dithering,
+//! nearest texel. Not hardware behaviour: the `gpu` crate stays hardware-faithful.
+//!
+//! Sampling convention, shared with the GPU so face-on views agree exactly: pixel (x, y)
+//! samples the scene at its integer coordinate, and the texel chosen is the nearest,
+//! `floor(u + 0.5)` (the GPU's +0.5 bias then truncation).
+
+use crate::pipeline::{object_rotation, prepare};
+use crate::scene::Scene;
+use crate::tessellate::{PreparedVertex, UV_FRACTION_BITS};
+use gte::typed::Vector3;
+
+/// A GTE vertex as f64.
+fn position(v: Vector3) -> [f64; 3] {
+    [v.x as f64, v.y as f64, v.z as f64]
+}
+
+/// A 1.3.12 normal as f64.
+fn unit(v: Vector3) -> [f64; 3] {
+    position(v).map(|c| c / 4096.0)
+}
+
+/// One reference frame.
+#[derive(Clone, Debug)]
+pub struct ReferenceFrame {
+    /// Width in pixels.
+    pub width: usize,
+    /// Height in pixels.
+    pub height: usize,
+    /// RGB, row-major.
+    pub rgb: Vec<[u8; 3]>,
+    /// The texel sampled at each pixel, where the nearest surface is textured.
+    pub texel: Vec<Option<(i32, i32)>>,
+    /// The size of the texture sampled at each pixel.
+    pub texture_size: Vec<Option<(i32, i32)>>,
+}
+
+impl ReferenceFrame {
+    /// As an image.
+    pub fn image(&self) -> image::RgbImage {
+        image::RgbImage::from_fn(self.width as u32, self.height as u32, |x, y| {
+            image::Rgb(self.rgb[y as usize * self.width + x as usize])
+        })
+    }
+}
+
+/// Rz * Ry * Rx for angles in degrees (the convention of `gte::typed::Matrix::rotation`).
+pub fn rotation(deg: [f64; 3]) -> [[f64; 3]; 3] {
+    let [x, y, z] = deg.map(f64::to_radians);
+    let (sx, cx, sy, cy, sz, cz) = (x.sin(), x.cos(), y.sin(), y.cos(), z.sin(), z.cos());
+    [
+        [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
+        [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
+        [-sy, cy * sx, cy * cx],
+    ]
+}
+
+fn mul(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+}
+
+/// A vertex in camera space with the attributes the rasterizer interpolates.
+#[derive(Clone, Copy, Debug)]
+struct CamVertex {
+    p: [f64; 3],
+    /// u, v (texels), r, g, b (0..255 light-modulated material colour).
+    attr: [f64; 5],
+}
+
+fn lerp(a: &CamVertex, b: &CamVertex, t: f64) -> CamVertex {
+    CamVertex {
+        p: std::array::from_fn(|i| a.p[i] + (b.p[i] - a.p[i]) * t),
+        attr: std::array::from_fn(|i| a.attr[i] + (b.attr[i] - a.attr[i]) * t),
+    }
+}
+
+/// Clip a convex polygon against z >= near (Sutherland-Hodgman).
+fn clip_near(poly: &[CamVertex], near: f64) -> Vec<CamVertex> {
+    let mut out = Vec::with_capacity(poly.len() + 2);
+    for i in 0..poly.len() {
+        let a = &poly[i];
+        let b = &poly[(i + 1) % poly.len()];
+        let (ina, inb) = (a.p[2] >= near, b.p[2] >= near);
+        if ina {
+            out.push(*a);
+        }
+        if ina != inb {
+            let t = (near - a.p[2]) / (b.p[2] - a.p[2]);
+            out.push(lerp(a, b, t));
+        }
+    }
+    out
+}
+
+/// Screen-space vertex: position, 1/z, attributes divided by z.
+#[derive(Clone, Copy)]
+struct ScreenVertex {
+    x: f64,
+    y: f64,
+    w: f64,
+    attr_w: [f64; 5],
+}
+
+/// Render frame `frame` of a scene.
+pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
+    let (width, height) = (scene.screen.width as usize, scene.screen.height as usize);
+    let h = scene.camera.h as f64;
+    let (cx, cy) = ((width / 2) as f64, (height / 2) as f64);
+    let near = 1.0;
+    let bg = scene.screen.background;
+    let mut rgb = vec![bg; width * height];
+    let mut texel = vec![None; width * height];
+    let mut texture_size = vec![None; width * height];
+    let mut depth = vec![0.0f64; width * height];
+    let view = rotation(scene.camera.rotation);
+    for (index, object) in scene.objects.iter().enumerate() {
+        let rot = rotation(object_rotation(object, frame));
+        let m: [[f64; 3]; 3] = std::array::from_fn(|r| {
+            std::array::from_fn(|c| (0..3).map(|k| view[r][k] * rot[k][c]).sum())
+        });
+        let rel: [f64; 3] = std::array::from_fn(|i| object.position[i] - scene.camera.position[i]);
+        let t = mul(&view, rel);
+        let texture = object
+            .texture
+            .and_then(|i| scene.textures.get(i))
+            .map(|t| &t.texture);
+        let light = scene.light.map(|l| {
+            let d = l.direction;
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
+            (
+                d.map(|c| -c / len),
+                l.color.map(|c| c as f64 / 255.0),
+                l.ambient.map(|c| c as f64 / 255.0),
+            )
+        });
+        let shade = |v: &PreparedVertex| -> [f64; 3] {
+            let base = object.color.map(|c| c as f64);
+            match light {
+                None => base,
+                Some((to_light, color, ambient)) => {
+                    let n = mul(&rot, unit(v.normal));
+                    let i = (n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2]).max(0.0);
+                    std::array::from_fn(|k| (base[k] * (ambient[k] + color[k] * i)).min(255.0))
+                }
+            }
+        };
+        for face in prepare(scene, index) {
+            let n = if face.quad { 4 } else { 3 };
+            // GP0 quad order v0 v1 v2 v3 -> polygon order v0 v1 v3 v2.
+            let order: &[usize] = if face.quad { &[0, 1, 3, 2] } else { &[0, 1, 2] };
+            let poly: Vec<CamVertex> = order
+                .iter()
+                .take(n)
+                .map(|&k| {
+                    let v = &face.v[k];
+                    let p = mul(&m, position(v.position));
+                    let c = shade(v);
+                    CamVertex {
+                        p: [p[0] + t[0], p[1] + t[1], p[2] + t[2]],
+                        attr: [
+                            v.uv[0] as f64 / (1 << UV_FRACTION_BITS) as f64,
+                            v.uv[1] as f64 / (1 << UV_FRACTION_BITS) as f64,
+                            c[0],
+                            c[1],
+                            c[2],
+                        ],
+                    }
+                })
+                .collect();
+            let clipped = clip_near(&poly, near);
+            if clipped.len() < 3 {
+                continue;
+            }
+            let sv: Vec<ScreenVertex> = clipped
+                .iter()
+                .map(|v| {
+                    let w = 1.0 / v.p[2];
+                    ScreenVertex {
+                        x: cx + h * v.p[0] * w,
+                        y: cy + h * v.p[1] * w,
+                        w,
+                        attr_w: v.attr.map(|a| a * w),
+                    }
+                })
+                .collect();
+            // Back-face test on the whole polygon (same sign as NCLIP).
+            let area: f64 = (0..sv.len())
+                .map(|i| {
+                    let (a, b) = (&sv[i], &sv[(i + 1) % sv.len()]);
+                    a.x * b.y - b.x * a.y
+                })
+                .sum();
+            if area <= 0.0 {
+                continue;
+            }
+            for k in 1..sv.len() - 1 {
+                raster(
+                    [&sv[0], &sv[k], &sv[k + 1]],
+                    (width, height),
+                    texture,
+                    &mut rgb,
+                    &mut texel,
+                    &mut texture_size,
+                    &mut depth,
+                );
+            }
+        }
+    }
+    ReferenceFrame {
+        width,
+        height,
+        rgb,
+        texel,
+        texture_size,
+    }
+}
+
+fn expand(c: u16) -> f64 {
+    let c = c & 31;
+    ((c << 3) | (c >> 2)) as f64
+}
+
+/// Rasterize one clockwise (front-facing) triangle with a top-left rule at integer sample
+/// points, perspective-correct attributes and a 1/z depth test.
+fn raster(
+    t: [&ScreenVertex; 3],
+    (width, height): (usize, usize),
+    texture: Option<&crate::quantize::Texture>,
+    rgb: &mut [[u8; 3]],
+    texel: &mut [Option<(i32, i32)>],
+    texture_size: &mut [Option<(i32, i32)>],
+    depth: &mut [f64],
+) {
+    let [a, b, c] = t;
+    let area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if area <= 0.0 || !area.is_finite() {
+        return;
+    }
+    let min_x = a.x.min(b.x).min(c.x).floor().max(0.0) as usize;
+    let max_x = (a.x.max(b.x).max(c.x).ceil().min(width as f64 - 1.0)).max(0.0) as usize;
+    let min_y = a.y.min(b.y).min(c.y).floor().max(0.0) as usize;
+    let max_y = (a.y.max(b.y).max(c.y).ceil().min(height as f64 - 1.0)).max(0.0) as usize;
+    // Edge function of edge p->q at (x, y); inside is positive for clockwise-on-screen
+    // triangles (Y down). Top-left rule: a pixel exactly on an edge belongs to it when the
+    // edge is a top or left edge.
+    let edge = |p: &ScreenVertex, q: &ScreenVertex, x: f64, y: f64| {
+        (q.x - p.x) * (y - p.y) - (q.y - p.y) * (x - p.x)
+    };
+    let top_left = |p: &ScreenVertex, q: &ScreenVertex| (q.y == p.y && q.x > p.x) || q.y < p.y;
+    let edges = [(a, b, c), (b, c, a), (c, a, b)];
+    for y in min_y..=max_y {
+        for x in min_x..=max_x {
+            let (fx, fy) = (x as f64, y as f64);
+            let mut w = [0.0; 3];
+            let mut inside = true;
+            for (i, (p, q, _)) in edges.iter().enumerate() {
+                let e = edge(p, q, fx, fy);
+                if e < 0.0 || (e == 0.0 && !top_left(p, q)) {
+                    inside = false;
+                    break;
+                }
+                w[i] = e / area;
+            }
+            if !inside {
+                continue;
+            }
+            // w[0] weights c (opposite a->b), w[1] weights a, w[2] weights b.
+            let interp = |f: &dyn Fn(&ScreenVertex) -> f64| w[1] * f(a) + w[2] * f(b) + w[0] * f(c);
+            let inv_z = interp(&|v| v.w);
+            let idx = y * width + x;
+            if inv_z <= depth[idx] {
+                continue;
+            }
+            let attr: [f64; 5] = std::array::from_fn(|k| interp(&|v| v.attr_w[k]) / inv_z);
+            let shade = [attr[2], attr[3], attr[4]];
+            let (color, coord) = match texture {
+                None => (shade, None),
+                Some(tex) => {
+                    // Nearest texel, ties up; 1e-9 absorbs f64 error at exact half texels.
+                    let u = (attr[0] + 0.5 + 1e-9).floor() as i32;
+                    let v = (attr[1] + 0.5 + 1e-9).floor() as i32;
+                    let (tw, th) = (tex.width as i32, tex.height as i32);
+                    let index = (v.rem_euclid(th) * tw + u.rem_euclid(tw)) as usize;
+                    let t = tex.texels.get(index).copied().unwrap_or(0);
+                    let c = if tex.clut.is_empty() {
+                        t
+                    } else {
+                        tex.clut.get(t as usize).copied().unwrap_or(0)
+                    };
+                    if c == 0 {
+                        continue;
+                    }
+                    let tc = [expand(c), expand(c >> 5), expand(c >> 10)];
+                    (
+                        std::array::from_fn(|k| tc[k] * shade[k] / 128.0),
+                        Some((u, v)),
+                    )
+                }
+            };
+            depth[idx] = inv_z;
+            rgb[idx] = color.map(|v| v.round().clamp(0.0, 255.0) as u8);
+            texel[idx] = coord;
+            texture_size[idx] = texture.map(|t| (t.width as i32, t.height as i32));
+        }
+    }
+}

@@ -1,0 +1,143 @@
+//! The accuracy-trade measurements: the reference renderer on cases with known answers and
+//! the report's accuracy columns on the face-on scene (not timed).
+
+use std::path::PathBuf;
+use wobble::reference;
+use wobble::scene::Scene;
+use wobble::trade::{TradeSettings, measure};
+
+fn scene(name: &str) -> Scene {
+    Scene::load(
+        &PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join("../../fixtures/scenes")
+            .join(name),
+    )
+    .unwrap()
+}
+
+/// Face-on, the reference's texel at pixel (x, y) is floor((x - 97)/2 + 0.5) across the
+/// front face (63 texels over 126 pixels), computed by hand from the geometry.
+#[test]
+fn reference_face_on_texels() {
+    let s = scene("face-on.toml");
+    let f = reference::render(&s, 0);
+    for (x, y) in [(97, 57), (98, 60), (150, 100), (222, 182)] {
+        let want = ((x - 97) / 2 + (x - 97) % 2, (y - 57) / 2 + (y - 57) % 2);
+        assert_eq!(
+            f.texel[y as usize * 320 + x as usize],
+            Some(want),
+            "({x},{y})"
+        );
+    }
+    assert_eq!(
+        f.texel[120 * 320 + 96],
+        None,
+        "left of the face: background"
+    );
+    assert_eq!(
+        f.texel[120 * 320 + 223],
+        None,
+        "right edge excluded (top-left rule)"
+    );
+}
+
+/// A known perspective case: the face turned 60 degrees about Y (yaw 683/4096 turn, so
+/// cos = 0.49945, sin = 0.86634 from the 1.3.12 table rounded). The ray through pixel
+/// (178, 120) has X/Z = 18/256; it meets the face at p = 512a / (cos + a sin) = 64.24 units
+/// right of centre, u = 63 (p/126 + 1)/2 = 47.56 -> texel 48.
+#[test]
+fn reference_perspective_case() {
+    let mut s = scene("face-on.toml");
+    // A single square (the cube's front face alone), centred 512 units away.
+    s.meshes[0].mesh = wobble::mesh::Mesh {
+        vertices: [
+            (-1.0, -1.0, 0.0, 0.0),
+            (1.0, -1.0, 1.0, 0.0),
+            (-1.0, 1.0, 0.0, 1.0),
+            (1.0, 1.0, 1.0, 1.0),
+        ]
+        .iter()
+        .map(|&(x, y, u, v)| wobble::mesh::MeshVertex {
+            position: [x, y, 0.0],
+            normal: [0.0, 0.0, -1.0],
+            uv: [u, v],
+        })
+        .collect(),
+        faces: vec![wobble::mesh::MeshFace {
+            indices: [0, 1, 2, 3],
+            quad: true,
+        }],
+    };
+    s.objects[0].position = [0.0, 0.0, 512.0];
+    s.objects[0].rotation = [0.0, 60.0, 0.0];
+    let f = reference::render(&s, 0);
+    let (u, v) = f.texel[120 * 320 + 178].expect("face at (178,120)");
+    assert_eq!(u, 48);
+    assert_eq!(v, 32, "v = 31.5 on the centre line, ties round up");
+}
+
+/// The report's accuracy columns on the face-on scene: the hardware configuration samples
+/// exactly the reference's texels (error 0), differs from itself in 0 pixels, and the
+/// exact-divide row equals it (H/SZ3 = 1/2 is exact in every mode).
+#[test]
+fn trade_face_on_accuracy_columns() {
+    let s = scene("face-on.toml");
+    let (rows, heat) = measure(
+        &s,
+        TradeSettings {
+            frames: 2,
+            repeats: 1,
+        },
+    )
+    .unwrap();
+    assert_eq!(rows.len(), heat.len());
+    let hw = &rows[0];
+    assert!(hw.name.starts_with("hardware"));
+    assert_eq!(hw.texel_mean, 0.0);
+    assert_eq!(hw.texel_max, 0.0);
+    assert_eq!(hw.differing_pixels, 0);
+    assert_eq!(hw.ratio, 1.0);
+    assert_eq!(hw.drawn, 1.0, "only the front face survives NCLIP");
+    let exact = rows.iter().find(|r| r.name == "divide: exact").unwrap();
+    assert_eq!((exact.differing_pixels, exact.texel_max), (0, 0.0));
+    assert_eq!(hw.jitter, 0.0, "nothing moves");
+    // Face-on with whole-pixel corners, the precise path agrees too: sub-pixel positions
+    // equal the snapped ones and perspective weights are all equal.
+    for name in [
+        "sub-pixel vertices (non-hardware)",
+        "perspective-correct UVs (non-hardware)",
+        "sub-pixel + perspective (non-hardware)",
+    ] {
+        let r = rows.iter().find(|r| r.name == name).unwrap();
+        assert_eq!(r.texel_max, 0.0, "{name}");
+    }
+}
+
+/// `wobble trade` runs on a small scene and writes the table, images and plot.
+#[test]
+fn trade_command_writes_report() {
+    let out = std::env::temp_dir().join(format!("wobble-trade-{}", std::process::id()));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args([
+            "trade",
+            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("../../fixtures/scenes/face-on.toml")
+                .to_str()
+                .unwrap(),
+            "--frames",
+            "2",
+            "--repeats",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("trade.md")).unwrap();
+    assert!(md.contains("| hardware (UNR, snapped, affine, dither, tess 0) |"));
+    assert!(md.contains("| tessellation 4 |"));
+    for f in ["hardware-vs-reference.png", "tessellation-curve.png"] {
+        assert!(out.join("trade").join(f).exists(), "{f}");
+    }
+}
