@@ -52,6 +52,7 @@ fn scene(meshes: Vec<Mesh>, objects: Vec<Object>) -> Scene {
             dither: false,
             background: [0, 0, 0],
         },
+        accuracy: Default::default(),
         camera: Camera {
             position: [0.0; 3],
             rotation: [0.0; 3],

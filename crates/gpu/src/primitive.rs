@@ -56,7 +56,7 @@ pub struct Triangle {
 pub struct Line {
     /// Endpoints in command order.
     pub vertices: [Vertex; 2],
-    /// Gouraud shading.
+    /// Gouraud shading; otherwise `vertices[0].color` (command order) is used throughout.
     pub gouraud: bool,
     /// Semi-transparency mode, when semi-transparent.
     pub blend: Option<BlendMode>,

@@ -372,7 +372,8 @@ impl Geometry {
     }
 
     /// NCLIP on the screen XY FIFO as it stands (after a projection): twice the signed area
-    /// of SXY0, SXY1, SXY2; positive when they run counter-clockwise on screen (Y down).
+    /// of SXY0, SXY1, SXY2; positive when they run clockwise as seen on a Y-down screen
+    /// (top-left, top-right, bottom-left).
     pub fn nclip_current(&mut self) -> i32 {
         self.gte.execute(command(Opcode::Nclip));
         self.gte.read_data(24) as i32

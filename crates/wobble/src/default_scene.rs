@@ -13,6 +13,7 @@ pub fn default_scene() -> Scene {
     let floor = Texture::checker(64, 4, [96, 176, 96], [32, 72, 40]);
     Scene {
         screen: Screen::default(),
+        accuracy: Default::default(),
         camera: Camera {
             position: [0.0, -300.0, -1500.0],
             rotation: [12.0, 0.0, 0.0],

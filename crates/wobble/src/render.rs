@@ -40,6 +40,15 @@ pub struct RenderArgs {
     /// Turn dithering off.
     #[arg(long)]
     pub no_dither: bool,
+    /// GTE divide (non-hardware: exact, f32); overrides the scene's `[accuracy] divide`.
+    #[arg(long, value_enum)]
+    pub divide: Option<crate::scene::Divide>,
+    /// Non-hardware: sub-pixel vertex positions.
+    #[arg(long)]
+    pub subpixel: bool,
+    /// Non-hardware: perspective-correct texture coordinates.
+    #[arg(long)]
+    pub perspective_uv: bool,
 }
 
 /// Parse `WxH`.
@@ -80,11 +89,14 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         scene.screen.width = w;
         scene.screen.height = h;
     }
+    let accuracy = scene.accuracy;
     let options = PipelineOptions {
         tessellation: args.tessellation,
         dither: args.no_dither.then_some(false),
         split_extent: args.split_extent,
-        ..PipelineOptions::default()
+        divide_mode: args.divide.unwrap_or(accuracy.divide).into(),
+        subpixel: args.subpixel || accuracy.subpixel,
+        perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };
     let mut renderer = Renderer::new(scene, options).map_err(|e| e.to_string())?;
     if let Some(dir) = &args.png_dir {

@@ -163,6 +163,43 @@ pub struct MeshAsset {
     pub mesh: Mesh,
 }
 
+/// The GTE divide a scene asks for (`[accuracy] divide`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "lowercase")]
+pub enum Divide {
+    /// The console's UNR divide.
+    #[default]
+    Unr,
+    /// Exact rounded division (non-hardware).
+    Exact,
+    /// f32 division (non-hardware).
+    F32,
+}
+
+impl From<Divide> for gte::DivideMode {
+    fn from(d: Divide) -> gte::DivideMode {
+        match d {
+            Divide::Unr => gte::DivideMode::Unr,
+            Divide::Exact => gte::DivideMode::Exact,
+            Divide::F32 => gte::DivideMode::F32,
+        }
+    }
+}
+
+/// Accuracy knobs beyond the hardware (docs/trade.md), from the `[accuracy]` table; all off
+/// by default, which is exactly the hardware. Dithering and tessellation, which the hardware
+/// has, live in `[screen]` and the objects.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct Accuracy {
+    /// GTE divide for RTPS/RTPT.
+    pub divide: Divide,
+    /// Keep 1/16-pixel screen positions instead of whole pixels.
+    pub subpixel: bool,
+    /// Perspective-correct texture coordinates instead of affine ones.
+    pub perspective_uv: bool,
+}
+
 /// A complete scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -174,6 +211,8 @@ pub struct Scene {
     pub light: Option<Light>,
     /// Depth cueing; none when `None`.
     pub fog: Option<Fog>,
+    /// Non-hardware accuracy knobs (all off: the hardware).
+    pub accuracy: Accuracy,
     /// Textures.
     pub textures: Vec<TextureAsset>,
     /// Meshes.
@@ -220,6 +259,8 @@ struct SceneFile {
     camera: Camera,
     light: Option<Light>,
     fog: Option<Fog>,
+    #[serde(default)]
+    accuracy: Accuracy,
     #[serde(default)]
     tessellation: u8,
     #[serde(default, rename = "texture")]
@@ -392,6 +433,7 @@ impl Scene {
             camera: file.camera,
             light: file.light,
             fog: file.fog,
+            accuracy: file.accuracy,
             textures,
             meshes,
             objects,

@@ -181,3 +181,23 @@ fn malformed_obj_names_file_and_line() {
     let e = Mesh::load_obj(&obj).unwrap_err().to_string();
     assert!(e.contains("badv.obj") && e.contains("line 2"), "{e}");
 }
+
+/// The `[accuracy]` table sets the non-hardware knobs; unknown values are refused.
+#[test]
+fn accuracy_table() {
+    let s = Scene::load(&write(
+        "acc.toml",
+        "[accuracy]\ndivide = \"exact\"\nsubpixel = true\nperspective_uv = true\n",
+    ))
+    .unwrap();
+    assert_eq!(s.accuracy.divide, wobble::scene::Divide::Exact);
+    assert!(s.accuracy.subpixel && s.accuracy.perspective_uv);
+    let d = Scene::load(&write("acc0.toml", "")).unwrap();
+    assert_eq!(
+        d.accuracy,
+        wobble::scene::Accuracy::default(),
+        "hardware by default"
+    );
+    let e = error("[accuracy]\ndivide = \"fast\"\n", "acc1.toml");
+    assert!(e.contains("acc1.toml") && e.contains("fast"), "{e}");
+}
