@@ -304,3 +304,138 @@ proptest! {
         prop_assert_eq!(g.vram().as_slice().len(), 1024 * 512);
     }
 }
+
+/// Drawing area covering the whole VRAM, offset 0.
+const FULL_AREA: [u32; 3] = [0xE300_0000, 0xE407_FFFF, 0xE500_0000];
+
+/// A packet position word for (x, y).
+fn pos(x: u32, y: u32) -> u32 {
+    y << 16 | x
+}
+
+/// Polyline termination (gpu.md §2): the terminator is tested where the next vertex's first
+/// word would be, i.e. the position word of a flat polyline and the colour word of a Gouraud
+/// one; 5000_5000h in a Gouraud position slot is a vertex at (0, 0).
+#[test]
+fn polyline_terminator() {
+    let red = 0x001F; // 0xF8 >> 3 in the red channel
+    let green = 0x03E0;
+    let mut g = Gpu::new();
+    g.gp0_words(&FULL_AREA);
+    // Flat: (10,10)-(13,10)-(13,12), then the terminator, then a 1x1 green rectangle.
+    g.gp0_words(&[
+        0x4800_00F8,
+        pos(10, 10),
+        pos(13, 10),
+        pos(13, 12),
+        0x5555_5555,
+    ]);
+    g.gp0_words(&[0x6800_F800, pos(20, 20)]);
+    for x in 10..=13 {
+        assert_eq!(px(&g, x, 10), red, "({x},10)");
+    }
+    for y in 10..=12 {
+        assert_eq!(px(&g, 13, y), red, "(13,{y})");
+    }
+    assert_eq!(px(&g, 14, 10), 0);
+    assert_eq!(px(&g, 13, 13), 0);
+    assert_eq!(
+        px(&g, 20, 20),
+        green,
+        "the word after the terminator is a command"
+    );
+
+    // Gouraud: the terminator in the colour slot ends the polyline.
+    g.gp0_words(&[
+        0x5800_00F8,
+        pos(30, 30),
+        0x0000_00F8,
+        pos(33, 30),
+        0x5000_5000,
+    ]);
+    g.gp0_words(&[0x6800_F800, pos(40, 40)]);
+    assert_eq!(px(&g, 30, 30), red);
+    assert_eq!(px(&g, 33, 30), red);
+    assert_eq!(px(&g, 34, 30), 0);
+    assert_eq!(px(&g, 40, 40), green);
+
+    // Gouraud: 5000_5000h as a position is the vertex (0, 0): a 45-degree line from (50,50).
+    g.gp0_words(&[
+        0x5800_00F8,
+        pos(50, 50),
+        0x0000_00F8,
+        0x5000_5000,
+        0x5555_5555,
+    ]);
+    for i in [0, 25, 50] {
+        assert_eq!(px(&g, i, i), red, "({i},{i})");
+    }
+    assert_eq!(px(&g, 1, 0), 0);
+}
+
+/// A stream mixing every packet shape (12-word textured Gouraud quad, polylines of both
+/// kinds, a rectangle, fill, copy, CPU-to-VRAM with an odd pixel count, E-commands) gives
+/// the same VRAM when split into two calls at every word position, and when fed word by word.
+#[test]
+fn packets_split_at_every_position() {
+    let mut words = FULL_AREA.to_vec();
+    words.extend([0x0200_4080, pos(0, 0), pos(64, 64)]); // fill
+    words.extend([
+        0xA000_0000,
+        pos(100, 5),
+        pos(3, 1),
+        0x7FFF_1234,
+        0x0000_4321,
+    ]);
+    words.extend([
+        0x3C10_2030,
+        pos(5, 5),
+        0x0000_0000,
+        0x0040_5060,
+        pos(60, 8),
+        0x0010_0010,
+        0x0070_8090,
+        pos(8, 50),
+        0x0000_1000,
+        0x00A0_B0C0,
+        pos(55, 58),
+        0x0000_1010,
+    ]);
+    words.extend([
+        0x4A30_4050,
+        pos(70, 70),
+        pos(90, 75),
+        pos(80, 95),
+        0x5000_5000,
+    ]);
+    words.extend([
+        0x5820_3040,
+        pos(100, 100),
+        0x0040_5060,
+        pos(120, 90),
+        0x5555_5555,
+    ]);
+    words.extend([
+        0xE100_0200,
+        0x6480_8080,
+        pos(130, 10),
+        0x0000_0402,
+        pos(20, 12),
+    ]);
+    words.extend([0x8000_0000, pos(0, 0), pos(200, 200), pos(40, 30)]); // copy
+    let mut whole = Gpu::new();
+    whole.gp0_words(&words);
+    let mut single = Gpu::new();
+    for &w in &words {
+        single.gp0(w);
+    }
+    assert!(single.vram() == whole.vram(), "word by word");
+    assert_ne!(px(&whole, 210, 210), 0, "the copy reached VRAM");
+    for split in 0..=words.len() {
+        let (a, b) = words.split_at(split);
+        let mut g = Gpu::new();
+        g.gp0_words(a);
+        g.gp0_words(b);
+        assert!(g.vram() == whole.vram(), "split at {split}");
+    }
+}
