@@ -49,6 +49,9 @@ struct TradeArgs {
     /// Timing repetitions; the median is reported (1..=50).
     #[arg(long, default_value_t = 5)]
     repeats: u32,
+    /// Divide-stability sweep over every SZ3 and every Nth H; 1 sweeps all 2^32 pairs.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u16).range(1..))]
+    sweep_step: u16,
 }
 
 #[derive(Subcommand)]
@@ -249,6 +252,7 @@ fn trade(args: &TradeArgs) -> Result<()> {
     let settings = wobble::trade::TradeSettings {
         frames: args.frames,
         repeats: args.repeats,
+        sweep_step: args.sweep_step as usize,
     };
     let rows = wobble::trade::write_report(&scene, &name, settings, &args.out)?;
     for r in &rows {

@@ -87,6 +87,7 @@ fn trade_face_on_accuracy_columns() {
         TradeSettings {
             frames: 2,
             repeats: 1,
+            sweep_step: 4099,
         },
     )
     .unwrap();
@@ -128,6 +129,8 @@ fn trade_command_writes_report() {
             "2",
             "--repeats",
             "1",
+            "--sweep-step",
+            "4099",
             "--out",
             out.to_str().unwrap(),
         ])
