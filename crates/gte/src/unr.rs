@@ -90,11 +90,19 @@ pub fn f32_divide(h: u16, sz3: u16) -> (u32, bool) {
 }
 
 /// Divide with the selected mode.
+///
+/// Built without the `divide-modes` feature, every mode is the hardware UNR divide.
 pub fn divide(mode: DivideMode, h: u16, sz3: u16) -> (u32, bool) {
+    #[cfg(feature = "divide-modes")]
     match mode {
         DivideMode::Unr => unr_divide(h, sz3),
         DivideMode::Exact => exact_divide(h, sz3),
         DivideMode::F32 => f32_divide(h, sz3),
+    }
+    #[cfg(not(feature = "divide-modes"))]
+    {
+        let _ = mode;
+        unr_divide(h, sz3)
     }
 }
 

@@ -50,9 +50,10 @@ pub struct PipelineOptions {
 }
 
 impl PipelineOptions {
-    /// Whether polygons go through the non-hardware precise rasterizer.
+    /// Whether polygons go through the non-hardware precise rasterizer (never, when built
+    /// without the `accuracy-knobs` feature).
     pub fn precise(&self) -> bool {
-        self.subpixel || self.perspective_uv
+        cfg!(feature = "accuracy-knobs") && (self.subpixel || self.perspective_uv)
     }
 }
 
