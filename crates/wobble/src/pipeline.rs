@@ -144,8 +144,6 @@ struct ProjectedFace {
     ot_index: u16,
     texture: Option<(u32, u32)>,
     blend: Option<u8>,
-    /// Sub-pixel positions (without the drawing offset) and 1/SZ, for the precise path.
-    precise: [PreciseVertex; 4],
 }
 
 /// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
@@ -381,6 +379,20 @@ pub struct Renderer {
     display: DisplayArea,
     /// CLUT cache of the precise path (the GPU's own is private to it).
     clut: ClutCache,
+    /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
+    /// filled only when the precise path is on, so the hardware path carries none of it.
+    precise_vertices: Vec<[PreciseVertex; 4]>,
+}
+
+/// Frame-wide settings of the precise path.
+#[derive(Clone, Copy)]
+struct PreciseFrame {
+    /// Drawing offset Y of the back buffer.
+    offset_y: i32,
+    /// E1 dithering.
+    dither: bool,
+    /// Perspective-correct texture coordinates.
+    perspective: bool,
 }
 
 /// Draw one polygon through the non-hardware precise rasterizer: the same colours, texture,
@@ -390,10 +402,14 @@ fn draw_precise(
     state: &gpu::state::DrawState,
     clut: &mut ClutCache,
     f: &ProjectedFace,
-    offset_y: i32,
-    dither: bool,
-    perspective: bool,
+    precise: &[PreciseVertex; 4],
+    place: PreciseFrame,
 ) {
+    let PreciseFrame {
+        offset_y,
+        dither,
+        perspective,
+    } = place;
     let texture = f.texture.map(|(clut_attr, tpage)| gpu::primitive::Texture {
         page_x: ((tpage & 0xF) * 64) as u16,
         page_y: (((tpage >> 4) & 1) * 256) as u16,
@@ -422,8 +438,8 @@ fn draw_precise(
         v: f.uv[k].1,
     };
     let at = |k: usize| PreciseVertex {
-        y: f.precise[k].y + (offset_y << SUBPIXEL_BITS),
-        ..f.precise[k]
+        y: precise[k].y + (offset_y << SUBPIXEL_BITS),
+        ..precise[k]
     };
     let triangles: &[[usize; 3]] = if f.quad {
         &[[0, 1, 2], [1, 2, 3]]
@@ -547,6 +563,7 @@ impl Renderer {
             geometry,
             display,
             clut: ClutCache::default(),
+            precise_vertices: Vec::new(),
         })
     }
 
@@ -599,6 +616,8 @@ impl Renderer {
         let g = &mut self.geometry;
         let stack = &mut self.stack;
         let scratch = &mut self.scratch;
+        let precise_vertices = &mut self.precise_vertices;
+        precise_vertices.clear();
         let capacity = self.capacity;
         let split_extent = i32::from(self.options.split_extent);
         let options = self.options;
@@ -710,8 +729,8 @@ impl Renderer {
                     } else {
                         g.average_z3([sz[0], sz[1], sz[2]])
                     };
-                    let mut precise = [PreciseVertex::default(); 4];
                     if options.precise() {
+                        let mut precise = [PreciseVertex::default(); 4];
                         let n = if face.quad { 4 } else { 3 };
                         for k in 0..n {
                             let (mut x, mut y) = (
@@ -737,9 +756,9 @@ impl Renderer {
                                 inv_z: (1u32 << 24) / (sz[k] as u32).max(1),
                             };
                         }
+                        precise_vertices.push(precise);
                     }
                     scratch.push(ProjectedFace {
-                        precise,
                         xy,
                         color,
                         uv: v.map(|p| p.texel()),
@@ -843,11 +862,21 @@ impl Renderer {
         // frame partly drawn rather than stopping the renderer.
         if self.options.precise() {
             let state = *gpu.draw_state();
-            let (scratch, clut, perspective) =
-                (&self.scratch, &mut self.clut, self.options.perspective_uv);
+            let (scratch, at, clut, perspective) = (
+                &self.scratch,
+                &self.precise_vertices,
+                &mut self.clut,
+                self.options.perspective_uv,
+            );
             let _ = self.ot.walk(|words| {
-                if let Some(f) = words.first().and_then(|&i| scratch.get(i as usize)) {
-                    draw_precise(gpu, &state, clut, f, buffer_y as i32, dither, perspective);
+                let i = words.first().map_or(usize::MAX, |&i| i as usize);
+                if let (Some(f), Some(at)) = (scratch.get(i), at.get(i)) {
+                    let place = PreciseFrame {
+                        offset_y: buffer_y as i32,
+                        dither,
+                        perspective,
+                    };
+                    draw_precise(gpu, &state, clut, f, at, place);
                 }
             });
         } else {

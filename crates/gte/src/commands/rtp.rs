@@ -1,25 +1,58 @@
 //! RTPS/RTPT: rotate, translate and perspective-project vertices (gte.md §5).
 
-use crate::Gte;
+#[cfg(feature = "divide-modes")]
+use crate::DivideMode;
 use crate::mac::{bit, clamp};
-use crate::unr;
+use crate::{Gte, unr};
+
+/// Divide selectors for the const parameter of the projection: the mode is chosen once per
+/// command, so the hardware path carries no per-vertex branch for the knob.
+const UNR: u8 = 0;
+#[cfg(feature = "divide-modes")]
+const EXACT: u8 = 1;
+#[cfg(feature = "divide-modes")]
+const F32: u8 = 2;
 
 impl Gte {
     /// RTPS: project V0; depth cue from it.
     pub(crate) fn rtps(&mut self, shift: u32, lm: bool) {
-        self.project_vertex(0, shift, lm, true);
+        #[cfg(feature = "divide-modes")]
+        match self.divide_mode {
+            DivideMode::Exact => self.project_vertex::<EXACT>(0, shift, lm, true),
+            DivideMode::F32 => self.project_vertex::<F32>(0, shift, lm, true),
+            DivideMode::Unr => self.project_vertex::<UNR>(0, shift, lm, true),
+        }
+        #[cfg(not(feature = "divide-modes"))]
+        self.project_vertex::<UNR>(0, shift, lm, true);
     }
 
     /// RTPT: project V0, V1, V2 in order; depth cue from the last only.
     pub(crate) fn rtpt(&mut self, shift: u32, lm: bool) {
-        self.project_vertex(0, shift, lm, false);
-        self.project_vertex(1, shift, lm, false);
-        self.project_vertex(2, shift, lm, true);
+        #[cfg(feature = "divide-modes")]
+        match self.divide_mode {
+            DivideMode::Exact => self.rtpt_with::<EXACT>(shift, lm),
+            DivideMode::F32 => self.rtpt_with::<F32>(shift, lm),
+            DivideMode::Unr => self.rtpt_with::<UNR>(shift, lm),
+        }
+        #[cfg(not(feature = "divide-modes"))]
+        self.rtpt_with::<UNR>(shift, lm);
     }
 
-    /// One vertex of RTPS/RTPT (gte.md §5 steps 1-7).
+    fn rtpt_with<const MODE: u8>(&mut self, shift: u32, lm: bool) {
+        self.project_vertex::<MODE>(0, shift, lm, false);
+        self.project_vertex::<MODE>(1, shift, lm, false);
+        self.project_vertex::<MODE>(2, shift, lm, true);
+    }
+
+    /// One vertex of RTPS/RTPT (gte.md §5 steps 1-7), with divide `MODE`.
     #[inline(always)]
-    fn project_vertex(&mut self, index: usize, shift: u32, lm: bool, depth_cue: bool) {
+    fn project_vertex<const MODE: u8>(
+        &mut self,
+        index: usize,
+        shift: u32,
+        lm: bool,
+        depth_cue: bool,
+    ) {
         let v = self.regs.v[index];
         let rt = self.regs.rt;
         let tr = self.regs.tr;
@@ -55,7 +88,13 @@ impl Gte {
         }
         self.regs.push_sz(sz3 as u16);
         // Divide (step 5).
-        let (q, overflow) = unr::divide(self.divide_mode, self.regs.h, sz3 as u16);
+        let (h, sz3) = (self.regs.h, sz3 as u16);
+        let (q, overflow) = match MODE {
+            UNR => unr::unr_divide(h, sz3),
+            #[cfg(feature = "divide-modes")]
+            EXACT => unr::exact_divide(h, sz3),
+            _ => unr::f32_divide(h, sz3),
+        };
         if overflow {
             self.flag_bits |= bit::DIVIDE;
         }
