@@ -468,6 +468,26 @@ pub fn curve_image(points: &[(f64, f64)]) -> image::RgbImage {
     for y in m..h as i32 - m {
         put(m, y, [0, 0, 0]);
     }
+    // Tick marks with numeric labels at 0, a half and the whole of each axis.
+    for k in 0..=2 {
+        let fx = max_x * k as f64 / 2.0;
+        let fy = max_y * k as f64 / 2.0;
+        let (tx, _) = to_px((fx, 0.0));
+        let (_, ty) = to_px((0.0, fy));
+        for d in 0..6 {
+            put(tx, h as i32 - m + d, [0, 0, 0]);
+            put(m - d, ty, [0, 0, 0]);
+        }
+        let label_x = format!("{fx:.2}");
+        draw_text(
+            &mut put,
+            tx - 3 * label_x.len() as i32,
+            h as i32 - m + 10,
+            &label_x,
+        );
+        let label_y = format!("{fy:.1}");
+        draw_text(&mut put, m - 8 - 6 * label_y.len() as i32, ty - 3, &label_y);
+    }
     for pair in points.windows(2) {
         let (a, b) = (to_px(pair[0]), to_px(pair[1]));
         let n = (b.0 - a.0).abs().max((b.1 - a.1).abs()).max(1);
@@ -488,6 +508,43 @@ pub fn curve_image(points: &[(f64, f64)]) -> image::RgbImage {
         }
     }
     img
+}
+
+/// 3x5 pixel glyphs for digits and the decimal point, rows top to bottom, 3 bits a row.
+const GLYPHS: [(char, [u8; 5]); 11] = [
+    ('0', [7, 5, 5, 5, 7]),
+    ('1', [2, 6, 2, 2, 7]),
+    ('2', [7, 1, 7, 4, 7]),
+    ('3', [7, 1, 7, 1, 7]),
+    ('4', [5, 5, 7, 1, 1]),
+    ('5', [7, 4, 7, 1, 7]),
+    ('6', [7, 4, 7, 5, 7]),
+    ('7', [7, 1, 1, 1, 1]),
+    ('8', [7, 5, 7, 5, 7]),
+    ('9', [7, 5, 7, 1, 7]),
+    ('.', [0, 0, 0, 0, 2]),
+];
+
+/// Draw `text` (digits and '.') at (x, y), each glyph pixel doubled.
+fn draw_text(put: &mut impl FnMut(i32, i32, [u8; 3]), x: i32, y: i32, text: &str) {
+    for (i, ch) in text.chars().enumerate() {
+        let Some((_, rows)) = GLYPHS.iter().find(|(c, _)| *c == ch) else {
+            continue;
+        };
+        for (r, bits) in rows.iter().enumerate() {
+            for c in 0..3 {
+                if bits >> (2 - c) & 1 == 1 {
+                    for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                        put(
+                            x + i as i32 * 8 + c * 2 + dx,
+                            y + r as i32 * 2 + dy,
+                            [0, 0, 0],
+                        );
+                    }
+                }
+            }
+        }
+    }
 }
 
 fn side_by_side(a: &image::RgbImage, b: &image::RgbImage) -> image::RgbImage {
@@ -638,7 +695,7 @@ pub fn write_report(
     let _ = writeln!(
         md,
         "\nError against cost across tessellation levels 0-4 (x: ms per frame from 0, y: mean \
-         texel error from 0; one dot per level, level 0 nearest the y axis):\n"
+         texel error from 0; one dot per level joined in level order 0 to 4; tick labels in those units):\n"
     );
     let _ = writeln!(md, "![tessellation curve](trade/tessellation-curve.png)\n");
     for r in rows
