@@ -137,7 +137,7 @@ impl Matrix {
 
     /// Rotation by `x`, then `y`, then `z` (angles in 1/4096 turn): R = Rz * Ry * Rx, each
     /// entry rounded to 1.3.12 from an integer sine table, products truncated by >> 12 as PS1
-    /// SDK rotation helpers do.
+    /// SDK rotation functions do.
     pub fn rotation(x: Angle, y: Angle, z: Angle) -> Matrix {
         let (sx, cx) = (sin(x), sin(x + 1024));
         let (sy, cy) = (sin(y), sin(y + 1024));

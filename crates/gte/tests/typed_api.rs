@@ -258,3 +258,45 @@ fn similar_triangles() {
     });
     assert_eq!((p.x, p.y), (210, 95));
 }
+
+proptest! {
+    /// Matrix, translation and projection types survive the trip through the registers: what
+    /// the set-up calls write reads back through CFC2 as the same bits (H and the 16-bit
+    /// registers sign-extended, gte.md §2).
+    #[test]
+    fn setup_round_trips_through_registers(s in setup()) {
+        let g = typed(&s);
+        prop_assert_eq!(Matrix::from_bits(s.rt).to_bits(), s.rt);
+        let gte = g.gte();
+        let rt = [
+            packed(s.rt[0][0], s.rt[0][1]),
+            packed(s.rt[0][2], s.rt[1][0]),
+            packed(s.rt[1][1], s.rt[1][2]),
+            packed(s.rt[2][0], s.rt[2][1]),
+            s.rt[2][2] as i32 as u32,
+        ];
+        for (i, w) in rt.into_iter().enumerate() {
+            prop_assert_eq!(gte.read_control(i), w);
+        }
+        for i in 0..3 {
+            prop_assert_eq!(gte.read_control(5 + i), s.tr[i] as u32);
+        }
+        prop_assert_eq!(gte.read_control(24), s.ofx as u32);
+        prop_assert_eq!(gte.read_control(25), s.ofy as u32);
+        prop_assert_eq!(gte.read_control(26), s.h as i16 as i32 as u32);
+        prop_assert_eq!(gte.read_control(27), s.dqa as i32 as u32);
+        prop_assert_eq!(gte.read_control(28), s.dqb as u32);
+        prop_assert_eq!(gte.read_control(29), s.zsf3 as i32 as u32);
+        prop_assert_eq!(gte.read_control(30), s.zsf4 as i32 as u32);
+    }
+
+    /// NCLIP of explicit screen points equals the doubled signed area computed in i64.
+    #[test]
+    fn nclip_of_points(p in prop::array::uniform3((-1024i16..1024, -1024i16..1024))) {
+        let mut g = Geometry::new();
+        let got = g.nclip(p);
+        let [(x0, y0), (x1, y1), (x2, y2)] = p.map(|(x, y)| (x as i64, y as i64));
+        let area = x0 * y1 + x1 * y2 + x2 * y0 - x0 * y2 - x1 * y0 - x2 * y1;
+        prop_assert_eq!(got as i64, area);
+    }
+}
