@@ -88,6 +88,22 @@ pub struct Projected {
     pub flag: Flag,
 }
 
+/// One projected vertex (RTPS) with its screen position before the integer truncation.
+///
+/// `x`/`y` are the 16.16 values of gte.md §5 step 6 (`quotient * IR1 + OFX`, resp.
+/// `quotient * IR2 + OFY`, from the divide mode in use), saturated to -400h..=3FFh.FFFFh: the
+/// range whose integer parts are the -400h..3FFh that SXY saturates to, with the fraction kept.
+/// So `x.floor()` is always `projected.x` (and likewise for y).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SubpixelProjected {
+    /// What [`Geometry::project`] returns for the same state and vertex.
+    pub projected: Projected,
+    /// Screen X in 16.16, before truncation.
+    pub x: I16F16,
+    /// Screen Y in 16.16, before truncation.
+    pub y: I16F16,
+}
+
 /// Three projected vertices (RTPT).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ProjectedTriangle {
@@ -354,6 +370,26 @@ impl Geometry {
             sz: self.gte.read_data(19) as u16,
             ir0: I4F12::from_bits(self.gte.read_data(8) as i16),
             flag: self.gte.flag(),
+        }
+    }
+
+    /// RTPS with the sub-pixel screen position: one command, the same register effects and
+    /// [`Projected`] as [`Geometry::project`], plus the 16.16 screen X/Y before the integer
+    /// truncation (gte.md §5 step 6), saturated as [`SubpixelProjected`] says.
+    pub fn project_subpixel(&mut self, v: Vector3) -> SubpixelProjected {
+        let projected = self.project(v);
+        let regs = self.gte.registers();
+        // The quotient RTPS used: H and the saturated SZ3 it pushed (gte.md §5 steps 4-5).
+        let (q, _) = crate::unr::divide(self.gte.divide_mode(), regs.h, projected.sz);
+        let q = q as i64;
+        let fine = |ir: i16, offset: i32| {
+            let value = q * ir as i64 + offset as i64;
+            I16F16::from_bits(value.clamp(-0x400 << 16, (0x400 << 16) - 1) as i32)
+        };
+        SubpixelProjected {
+            projected,
+            x: fine(regs.ir[1], regs.ofx),
+            y: fine(regs.ir[2], regs.ofy),
         }
     }
 
