@@ -151,13 +151,14 @@ impl Matrix {
         self.0.map(|row| row.map(I4F12::to_bits))
     }
 
-    /// Rotation by `x`, then `y`, then `z` (angles in 1/4096 turn): R = Rz * Ry * Rx, each
+    /// Rotation by `x`, then `y`, then `z` (angles in 1/4096 turn, any `i32`: only the low
+    /// 12 bits matter, a whole turn being 4096): R = Rz * Ry * Rx, each
     /// entry rounded to 1.3.12 from an integer sine table, products truncated by >> 12 as PS1
     /// SDK rotation functions do.
     pub fn rotation(x: Angle, y: Angle, z: Angle) -> Matrix {
-        let (sx, cx) = (sin(x), sin(x + 1024));
-        let (sy, cy) = (sin(y), sin(y + 1024));
-        let (sz, cz) = (sin(z), sin(z + 1024));
+        let (sx, cx) = (sin(x), cos(x));
+        let (sy, cy) = (sin(y), cos(y));
+        let (sz, cz) = (sin(z), cos(z));
         let m = [
             [
                 (cz * cy) >> 12,
@@ -189,9 +190,10 @@ impl Matrix {
     }
 }
 
-/// sin(angle) in 1.3.12 for an angle in 1/4096 turn, from a compile-time quarter-wave table.
+/// sin(angle) in 1.3.12 for an angle in 1/4096 turn (any `i32`; only the low 12 bits
+/// matter), from a compile-time quarter-wave table.
 pub fn sin(angle: Angle) -> i32 {
-    let a = angle.rem_euclid(4096) as usize;
+    let a = (angle & 0xFFF) as usize;
     let q = a % 1024;
     let v = match a / 1024 {
         0 => SINE_QUARTER[q],
@@ -202,7 +204,7 @@ pub fn sin(angle: Angle) -> i32 {
     v as i32
 }
 
-/// cos(angle) in 1.3.12.
+/// cos(angle) in 1.3.12 (any `i32`; a quarter turn ahead of [`sin`], wrapping).
 pub fn cos(angle: Angle) -> i32 {
     sin(angle.wrapping_add(1024))
 }
@@ -213,7 +215,7 @@ const SINE_QUARTER: [i16; 1025] = build_sine();
 
 const fn build_sine() -> [i16; 1025] {
     // pi/2 in Q60.
-    const HALF_PI_Q60: i128 = 1_810_991_460_782_602_770;
+    const HALF_PI_Q60: i128 = 1_811_004_864_519_280_711;
     let mut table = [0i16; 1025];
     let mut i = 0;
     while i <= 1024 {
@@ -521,6 +523,8 @@ mod tests {
         assert_eq!(sin(2048), 0);
         assert_eq!(sin(3072), -4096);
         assert_eq!(cos(0), 4096);
+        // 982/4096 turn: 4096 * sin = 4087.502 -> 4088 (a wrong pi/2 constant once gave 4087).
+        assert_eq!(sin(982), 4088);
     }
 
     #[test]
