@@ -30,14 +30,14 @@ fn all_hardware_vectors_match() {
         assert_eq!(input.len(), 64);
         let mut gte = Gte::new();
         for (reg, &value) in input.iter().enumerate() {
-            gte.write(reg, value);
+            gte.write(reg as u32, value);
         }
         if let Some(cmd) = v["cmd"].as_u64() {
             gte.execute(cmd as u32);
         }
         let mut diffs = Vec::new();
         for (reg, &want) in expected.iter().enumerate() {
-            let got = gte.read(reg);
+            let got = gte.read(reg as u32);
             if got != want {
                 diffs.push(format!(
                     "{} got {got:08X} expected {want:08X}",

@@ -8,7 +8,7 @@
 //! unsigned 16-bit projection distance H, depth-cue DQA (8.8) and DQB (8.24).
 
 use crate::command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
-use crate::{DivideMode, Flag, Gte};
+use crate::{DivideMode, Flag, Gte, UnsupportedDivideMode};
 pub use fixed::types::{I4F12, I8F8, I8F24, I16F16};
 
 /// A 3x3 matrix of 1.3.12 entries (rotation RT, light LLM or light colour LCM), row-major.
@@ -247,7 +247,7 @@ fn packed(lo: i16, hi: i16) -> u32 {
     (lo as u16 as u32) | ((hi as u16 as u32) << 16)
 }
 
-fn write_matrix(gte: &mut Gte, first: usize, m: &Matrix) {
+fn write_matrix(gte: &mut Gte, first: u32, m: &Matrix) {
     let b = m.to_bits();
     gte.write_control(first, packed(b[0][0], b[0][1]));
     gte.write_control(first + 1, packed(b[0][2], b[1][0]));
@@ -256,7 +256,7 @@ fn write_matrix(gte: &mut Gte, first: usize, m: &Matrix) {
     gte.write_control(first + 4, b[2][2] as i32 as u32);
 }
 
-fn write_vector(gte: &mut Gte, index: usize, v: Vector3) {
+fn write_vector(gte: &mut Gte, index: u32, v: Vector3) {
     gte.write_data(index * 2, packed(v.x, v.y));
     gte.write_data(index * 2 + 1, v.z as i32 as u32);
 }
@@ -309,9 +309,10 @@ impl Geometry {
         &mut self.gte
     }
 
-    /// Select the divide used by projection (non-hardware modes are accuracy knobs).
-    pub fn set_divide_mode(&mut self, mode: DivideMode) {
-        self.gte.set_divide_mode(mode);
+    /// Select the divide used by projection (non-hardware modes are accuracy knobs), as
+    /// [`Gte::set_divide_mode`]: refused without the `divide-modes` feature.
+    pub fn set_divide_mode(&mut self, mode: DivideMode) -> Result<(), UnsupportedDivideMode> {
+        self.gte.set_divide_mode(mode)
     }
 
     /// Load the rotation matrix RT (c0-c4).
@@ -349,15 +350,15 @@ impl Geometry {
 
     /// Load the background (ambient) colour BK (c13-c15), 1.19.12 per channel (4096 = 1.0).
     pub fn set_background_color(&mut self, bk: [i32; 3]) {
-        for (i, v) in bk.into_iter().enumerate() {
-            self.gte.write_control(13 + i, v as u32);
+        for (r, v) in (13..).zip(bk) {
+            self.gte.write_control(r, v as u32);
         }
     }
 
     /// Load the far colour FC (c21-c23) that depth cueing fades towards, 1.27.4 per channel.
     pub fn set_far_color(&mut self, fc: [i32; 3]) {
-        for (i, v) in fc.into_iter().enumerate() {
-            self.gte.write_control(21 + i, v as u32);
+        for (r, v) in (21..).zip(fc) {
+            self.gte.write_control(r, v as u32);
         }
     }
 
@@ -397,7 +398,7 @@ impl Geometry {
 
     /// RTPT: rotate, translate and project three vertices.
     pub fn project_triangle(&mut self, v: [Vector3; 3]) -> ProjectedTriangle {
-        for (i, v) in v.into_iter().enumerate() {
+        for (i, v) in (0..).zip(v) {
             write_vector(&mut self.gte, i, v);
         }
         self.gte.execute(command(Opcode::Rtpt));
@@ -419,16 +420,16 @@ impl Geometry {
 
     /// NCLIP of three screen points.
     pub fn nclip(&mut self, xy: [(i16, i16); 3]) -> i32 {
-        for (i, (x, y)) in xy.into_iter().enumerate() {
-            self.gte.write_data(12 + i, packed(x, y));
+        for (r, (x, y)) in (12..).zip(xy) {
+            self.gte.write_data(r, packed(x, y));
         }
         self.nclip_current()
     }
 
     /// AVSZ3 of three screen Z values: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) >> 12.
     pub fn average_z3(&mut self, sz: [u16; 3]) -> u16 {
-        for (i, z) in sz.into_iter().enumerate() {
-            self.gte.write_data(17 + i, z as u32);
+        for (r, z) in (17..).zip(sz) {
+            self.gte.write_data(r, z as u32);
         }
         self.gte.execute(command(Opcode::Avsz3));
         self.gte.read_data(7) as u16
@@ -436,8 +437,8 @@ impl Geometry {
 
     /// AVSZ4 of four screen Z values: OTZ = ZSF4 * (SZ0 + ... + SZ3) >> 12.
     pub fn average_z4(&mut self, sz: [u16; 4]) -> u16 {
-        for (i, z) in sz.into_iter().enumerate() {
-            self.gte.write_data(16 + i, z as u32);
+        for (r, z) in (16..).zip(sz) {
+            self.gte.write_data(r, z as u32);
         }
         self.gte.execute(command(Opcode::Avsz4));
         self.gte.read_data(7) as u16
@@ -458,7 +459,7 @@ impl Geometry {
     }
 
     fn triple(&mut self, op: Opcode, normals: [Vector3; 3]) -> [Rgb; 3] {
-        for (i, n) in normals.into_iter().enumerate() {
+        for (i, n) in (0..).zip(normals) {
             write_vector(&mut self.gte, i, n);
         }
         self.gte.execute(command(op));
