@@ -1,10 +1,18 @@
 //! PlayStation GTE (COP2): the geometry transformation engine, bit-exact in fixed point.
 //!
 //! Two faces: [`Gte`], the register-level engine an emulator drives (MTC2/MFC2/CTC2/CFC2 and
-//! the COP2 command word), and [`typed`], a fixed-point API for transforming and projecting
-//! vertices the PS1 way. The facts implemented are those of the GTE fact sheet (`gte.md`,
-//! cited by section); choices where hardware data is silent are listed in `docs/gte.md`.
-#![cfg_attr(not(feature = "std"), no_std)]
+//! the COP2 command word), and `typed` (feature `typed`, default), a fixed-point API for
+//! transforming and projecting vertices the PS1 way. The facts implemented are those of the
+//! GTE fact sheet (`gte.md`, cited by section); choices where hardware data is silent are
+//! listed in `docs/gte.md`.
+//!
+//! Features: `typed` (default) the typed API and its `fixed` dependency; `divide-modes`
+//! (default) the non-hardware divides [`DivideMode::Exact`] and [`DivideMode::F32`] in the
+//! engine (without it [`Gte::set_divide_mode`] refuses them); `serde` serialization of
+//! [`GteState`]. The crate is `no_std` and allocates nothing.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 mod command;
 mod commands;
@@ -12,6 +20,7 @@ mod flag;
 mod mac;
 mod registers;
 mod state;
+#[cfg(feature = "typed")]
 pub mod typed;
 pub mod unr;
 

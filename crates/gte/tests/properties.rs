@@ -3,7 +3,7 @@
 
 use gte::unr::{exact_divide, unr_divide};
 use gte::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
-use gte::{Flag, Gte};
+use gte::{DivideMode, Flag, Gte};
 use proptest::prelude::*;
 
 const MAC_MAX: i128 = (1 << 43) - 1;
@@ -315,7 +315,7 @@ fn undefined_opcodes_only_clear_flag() {
         }
         let mut gte = Gte::new();
         for r in 0..63 {
-            gte.write(r, 0x1234_5678u32.rotate_left(r as u32));
+            gte.write(r, 0x1234_5678u32.rotate_left(r));
         }
         gte.write_control(31, 0xFFFF_FFFF);
         let before: Vec<u32> = (0..63).map(|r| gte.read(r)).collect();
@@ -371,4 +371,25 @@ fn cycle_counts() {
         assert_eq!(Gte::new().execute(op | 0x1F0_0000), Some(cycles));
     }
     assert_eq!(gte::cycles(0), None);
+}
+
+/// The non-hardware divides run only in a build with `divide-modes`; without it they are
+/// refused and the hardware divide stays selected (docs/gte.md, "Features").
+#[test]
+fn divide_mode_support_follows_the_feature() {
+    let with = cfg!(feature = "divide-modes");
+    for mode in [DivideMode::Exact, DivideMode::F32] {
+        let mut gte = Gte::new();
+        assert_eq!(mode.is_supported(), with);
+        let result = gte.set_divide_mode(mode);
+        if with {
+            assert_eq!(result, Ok(()));
+            assert_eq!(gte.divide_mode(), mode);
+        } else {
+            assert_eq!(result, Err(gte::UnsupportedDivideMode(mode)));
+            assert_eq!(gte.divide_mode(), DivideMode::Unr);
+        }
+    }
+    assert!(DivideMode::Unr.is_supported());
+    assert_eq!(Gte::new().set_divide_mode(DivideMode::Unr), Ok(()));
 }

@@ -2,6 +2,8 @@
 //! the same operation by hand (register writes, command words assembled from the fact
 //! sheet's bit layout, gte.md §1) and compares.
 
+#![cfg(feature = "typed")]
+
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Gte};
 use proptest::prelude::*;
