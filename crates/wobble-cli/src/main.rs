@@ -276,8 +276,10 @@ fn trade(args: &TradeArgs) -> Result<()> {
         repeats: args.repeats,
         sweep_step: args.sweep_step as usize,
     };
-    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out)
-        .map_err(|e| e.to_string())?;
+    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out, &mut |step| {
+        eprintln!("{step}")
+    })
+    .map_err(|e| e.to_string())?;
     for r in &rows {
         println!(
             "{:<50} {:>8.3} ms {:>6.2}x  texel error mean {:.3} max {:.2}  jitter {:.3} px",

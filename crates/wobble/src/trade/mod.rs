@@ -321,6 +321,43 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
+/// A long step [`write_report`] is starting; its `Display` is the line to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TradeProgress {
+    /// Measuring every configuration.
+    Measuring {
+        /// Configurations measured.
+        configurations: usize,
+        /// Frames per configuration.
+        frames: u32,
+        /// Timing runs per configuration.
+        repeats: u32,
+    },
+    /// The divide sweep over all 2^32 (H, SZ3) pairs.
+    FullSweep,
+}
+
+impl fmt::Display for TradeProgress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TradeProgress::Measuring {
+                configurations,
+                frames,
+                repeats,
+            } => write!(
+                f,
+                "measuring {configurations} configurations over {frames} frames, {repeats} \
+                 timing runs each"
+            ),
+            TradeProgress::FullSweep => write!(
+                f,
+                "sweeping the GTE divide over all 2^32 (H, SZ3) pairs in three modes (about a \
+                 minute)"
+            ),
+        }
+    }
+}
+
 /// Why the trade report could not be written.
 #[derive(Debug)]
 pub enum TradeError {
@@ -631,18 +668,18 @@ pub fn write_report(
     scene_name: &str,
     settings: TradeSettings,
     out: &Path,
+    progress: &mut dyn FnMut(TradeProgress),
 ) -> Result<Vec<Row>, TradeError> {
     let images_dir = out.join("trade");
     std::fs::create_dir_all(&images_dir).map_err(|source| TradeError::Io {
         file: images_dir.clone(),
         source,
     })?;
-    eprintln!(
-        "measuring {} configurations over {} frames, {} timing runs each",
-        configs().len(),
-        settings.frames.max(2),
-        settings.repeats.max(1)
-    );
+    progress(TradeProgress::Measuring {
+        configurations: configs().len(),
+        frames: settings.frames.max(2),
+        repeats: settings.repeats.max(1),
+    });
     let (rows, heat) = measure(scene, settings)?;
     let save = |img: &image::RgbImage, name: &str| -> Result<(), TradeError> {
         let p = images_dir.join(name);
@@ -666,9 +703,7 @@ pub fn write_report(
         .collect();
     save(&curve_image(&curve), "tessellation-curve.png")?;
     if settings.sweep_step <= 1 {
-        eprintln!(
-            "sweeping the GTE divide over all 2^32 (H, SZ3) pairs in three modes (about a minute)"
-        );
+        progress(TradeProgress::FullSweep);
     }
     let stability = divide_stability(settings.sweep_step);
 
