@@ -207,13 +207,14 @@ fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, VectorErro
 fn run(vector: &Vector) -> [u32; 64] {
     let mut gte = Gte::new();
     for &(reg, value) in &vector.writes {
-        gte.write(reg, value);
+        // Register indices are below 64 (checked on parse).
+        gte.write(reg as u32, value);
     }
     if let Some(cmd) = vector.cmd {
         gte.execute(cmd);
     }
     let mut out = [0u32; 64];
-    for (reg, slot) in out.iter_mut().enumerate() {
+    for (reg, slot) in (0..).zip(out.iter_mut()) {
         *slot = gte.read(reg);
     }
     out
