@@ -17,8 +17,8 @@ pub const REGISTER_NAMES: [&str; 64] = [
 ];
 
 /// The register file as the hardware stores it (16-bit registers keep 16 bits), without the
-/// side effects of MTC2/CTC2 (gte.md §2): setting a field changes that field only. Part of a
-/// [`GteState`](crate::GteState).
+/// side effects of MTC2/CTC2 (docs/hardware/gte.md §2): setting a field changes that field
+/// only. Part of a [`GteState`](crate::GteState).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Registers {
