@@ -145,7 +145,7 @@ impl Gpu {
     /// GPUSTAT (psx-spx "GPU Status Register"): draw mode bits 0-10, mask bits 11-12, display
     /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA direction 29-30. Bit 13 reads 1
     /// and bit 31 0 (no video timing is modelled). The ready bits follow the FIFO and the
-    /// drawing time (psx-spx "Ready Bits"; ps1-tests gpu/gpustat): 26 when nothing is being
+    /// drawing time (docs/hardware/dma.md §8): 26 when nothing is being
     /// received, queued or drawn; 27 while a VRAM-to-CPU transfer has data; 28 unless a
     /// complete command waits in the FIFO, the FIFO is full, or a polygon or line is being
     /// received; 25 is 0, FIFO-not-full, bit 28 or bit 27 for DMA direction 0 to 3.

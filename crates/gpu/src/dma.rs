@@ -1,9 +1,10 @@
 //! DMA channel 2 (GPU) in block and linked-list mode, and channel 6 (OTC), over the
-//! emulator's main RAM (psx-spx "DMA Channels"; docs/emulator.md, "Drawing time, FIFO and
+//! emulator's main RAM (docs/hardware/dma.md; docs/emulator.md, "Drawing time, FIFO and
 //! DMA").
 //!
 //! Main RAM is given as bytes, little-endian words. Addresses are 24-bit MADR values; RAM is
-//! the 2 MiB that the first 8 MiB mirror, so an address selects byte `addr & 1FFFFCh`.
+//! the 2 MiB that the first 8 MiB mirror, so an address selects byte `addr & 1FFFFCh`
+//! (docs/hardware/dma.md §2).
 
 use core::fmt;
 
@@ -16,7 +17,7 @@ pub const RAM_SIZE: usize = 2 * 1024 * 1024;
 pub const RAM_MASK: u32 = 0x1F_FFFC;
 /// Header and data words one [`Gpu::dma_linked_list`] call reads at most before it pauses
 /// and reports where to resume: a list that loops forever (which the console keeps walking,
-/// ps1-tests dma/chain-looping) cannot hang the caller.
+/// docs/hardware/dma.md §6) cannot hang the caller.
 pub const LINKED_LIST_WORD_BUDGET: u32 = 0x1_0000;
 
 /// Why a DMA could not run.
@@ -117,7 +118,7 @@ pub(crate) enum WalkEnd {
     BadLink(u32),
 }
 
-/// Walk a DMA2 linked list (psx-spx "DMA Channels", "Linked List DMA"; docs/emulator.md):
+/// Walk a DMA2 linked list (docs/hardware/dma.md §5, §6; docs/emulator.md):
 /// from `start`, read a header `N << 24 | next`, hand the node (its header address and N) to
 /// `visit`, and follow `next` until a link with bit 23 set. At most `node_limit` headers are
 /// read; `visit` returns false to stop after its node. Returns how it ended and the nodes
@@ -155,7 +156,7 @@ pub(crate) fn walk_nodes<M: ListMemory>(
 }
 
 /// CPU cycles a DMA moving `words` words takes: one per word plus one per 16 for DRAM row
-/// changes (psx-spx "DMA Transfer Rates": 110h clocks per 100h words).
+/// changes (110h clocks per 100h words, docs/hardware/dma.md §10).
 fn transfer_cycles(words: u32) -> u32 {
     words.saturating_add(words / 16)
 }
@@ -167,11 +168,11 @@ fn gpu_to_cpu_cycles(gpu: u32) -> u32 {
     u32::try_from(cpu).unwrap_or(u32::MAX)
 }
 
-/// DMA6 (OTC): clear an ordering table of `count` words ending at `start` (psx-spx "GPU Depth
-/// Ordering", "DMA Channels"): the word at `start` links to the word before it, and so on
-/// down; the lowest word gets the end code 00FFFFFFh. Links are 24-bit addresses. A count
-/// of 0 means 10000h words. Addresses that wrap below 0 (to FFFFFCh and down, past RAM) are
-/// not written (psx-spx "D#_MADR"). Returns the CPU cycles taken (one per word, 110h per
+/// DMA6 (OTC): clear an ordering table of `count` words ending at `start` (docs/hardware/
+/// dma.md §7): the word at `start` links to the word before it, and so on down; the lowest
+/// word gets the end code 00FFFFFFh. Links are 24-bit addresses. A count of 0 means 10000h
+/// words. Addresses that wrap below 0 (to FFFFFCh and down, past RAM) are not written
+/// (docs/hardware/dma.md §2; psx-spx "D#_MADR"). Returns the CPU cycles taken (one per word, 110h per
 /// 100h). Nothing is written when an address lies outside `ram`.
 pub fn dma_clear_ordering_table(ram: &mut [u8], start: u32, count: u32) -> Result<u32, DmaError> {
     let n = match count {
@@ -220,7 +221,7 @@ impl Gpu {
         waited
     }
 
-    /// DMA2 block (sync) mode, RAM to GP0 (psx-spx "DMA Channels"): the words go to GP0 in
+    /// DMA2 block (sync) mode, RAM to GP0 (docs/hardware/dma.md §4): the words go to GP0 in
     /// order. Returns the CPU cycles taken: one per word (110h per 100h words) plus the time
     /// spent waiting while the FIFO is full. The drawing time spent waiting has already
     /// passed on the GPU side: the caller runs the returned cycles through [`Gpu::run`] as
@@ -244,7 +245,7 @@ impl Gpu {
         transfer_cycles(u32::try_from(out.len()).unwrap_or(u32::MAX))
     }
 
-    /// DMA2 linked-list mode (psx-spx "DMA Channels", "Linked List DMA"): walk the list in
+    /// DMA2 linked-list mode (docs/hardware/dma.md §5, §6): walk the list in
     /// `ram` (bytes, little-endian words, addresses masked to 2 MiB) from node address
     /// `start`, giving each node's words to GP0, until a link with bit 23 set. Waits while
     /// the FIFO is full as [`Gpu::dma_block_write`] does. At most

@@ -304,6 +304,35 @@ impl Drawing {
     }
 }
 
+impl crate::Gpu {
+    /// Advance the drawing side by `gpu_cycles` GPU cycles; returns (GP0(1Fh) raised the IRQ,
+    /// the GPU went from busy to idle) since the previous call, each reported once.
+    pub(crate) fn advance_drawing(&mut self, gpu_cycles: u32) -> (bool, bool) {
+        if self.drawing.advance(gpu_cycles) {
+            self.drawing.set_done();
+        }
+        let irq = core::mem::take(&mut self.irq_event);
+        (irq, self.drawing.take_done())
+    }
+
+    /// GPU cycles until [`crate::Gpu::advance_drawing`] would report something: 0 while a
+    /// report is pending, the time to idle (counted from the clock, so including time a DMA
+    /// ran ahead) while drawing, `None` when idle.
+    pub(crate) fn drawing_cycles_until_event(&self) -> Option<u32> {
+        if self.irq_event || self.drawing.done_pending() {
+            Some(0)
+        } else if self.drawing.idle() {
+            None
+        } else {
+            Some(
+                self.drawing
+                    .ahead()
+                    .saturating_add(self.drawing.cycles_until_idle()),
+            )
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -399,34 +428,5 @@ mod tests {
         d.clear_fifo();
         assert_eq!(d.fifo_words(), 0);
         assert_eq!(d.cycles_until_idle(), 10);
-    }
-}
-
-impl crate::Gpu {
-    /// Advance the drawing side by `gpu_cycles` GPU cycles; returns (GP0(1Fh) raised the IRQ,
-    /// the GPU went from busy to idle) since the previous call, each reported once.
-    pub(crate) fn advance_drawing(&mut self, gpu_cycles: u32) -> (bool, bool) {
-        if self.drawing.advance(gpu_cycles) {
-            self.drawing.set_done();
-        }
-        let irq = core::mem::take(&mut self.irq_event);
-        (irq, self.drawing.take_done())
-    }
-
-    /// GPU cycles until [`crate::Gpu::advance_drawing`] would report something: 0 while a
-    /// report is pending, the time to idle (counted from the clock, so including time a DMA
-    /// ran ahead) while drawing, `None` when idle.
-    pub(crate) fn drawing_cycles_until_event(&self) -> Option<u32> {
-        if self.irq_event || self.drawing.done_pending() {
-            Some(0)
-        } else if self.drawing.idle() {
-            None
-        } else {
-            Some(
-                self.drawing
-                    .ahead()
-                    .saturating_add(self.drawing.cycles_until_idle()),
-            )
-        }
     }
 }
