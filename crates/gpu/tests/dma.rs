@@ -292,3 +292,35 @@ fn command_buffer_reset_empties_the_fifo() {
     assert_eq!(g.gpustat() >> 26 & 1, 1);
     assert!(g.run(0).drawing_done);
 }
+
+proptest! {
+    /// Any number of fills of any size by DMA: running to each predicted event ends the
+    /// drawing, reported exactly once, after the sum of the fills' times; the GPU is then
+    /// ready for commands and DMA blocks again.
+    #[test]
+    fn fills_by_dma_end_when_predicted(sizes in prop::collection::vec((1u32..64, 1u32..64), 1..40)) {
+        let mut words = Vec::new();
+        let mut total_gpu = 0u32;
+        for &(w, h) in &sizes {
+            words.extend_from_slice(&[0x0200_0000, 0, h << 16 | w]);
+            let width = (w + 15) & !15;
+            total_gpu += units_to_gpu(46.0 + (h * (width / 8 + 9)) as f64);
+        }
+        let mut g = Gpu::new();
+        g.dma_block_write(&words);
+        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(total_gpu));
+        let mut done = 0;
+        for _ in 0..4 {
+            let n = g.cycles_until_next_event();
+            if n == u32::MAX {
+                break;
+            }
+            if g.run(n).drawing_done {
+                done += 1;
+            }
+        }
+        prop_assert_eq!(done, 1);
+        prop_assert_eq!(g.gpustat() >> 26 & 1, 1);
+        prop_assert_eq!(g.gpustat() >> 28 & 1, 1);
+    }
+}
