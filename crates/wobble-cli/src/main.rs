@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand, PageDepth};
 
+mod output;
 mod render;
 
 #[derive(Parser)]
@@ -122,24 +123,35 @@ struct DumpArgs {
     /// What to write (ignored with --texpage).
     #[arg(long, value_enum, default_value_t = Region::Vram)]
     region: Region,
-    /// Display area for --region display: X,Y,WxH or X,Y,WxH,24 for 24-bit colour.
-    #[arg(long, default_value = "0,0,320x240")]
-    display: String,
+    /// Display area for --region display: X,Y,WxH or X,Y,WxH,24 for 24-bit colour
+    /// (default 0,0,320x240).
+    #[arg(long)]
+    display: Option<String>,
     /// View a texture page at VRAM X,Y (X multiple of 64, Y 0 or 256 on hardware).
     #[arg(long)]
     texpage: Option<String>,
-    /// Texture depth for --texpage: 4, 8 or 15.
-    #[arg(long, default_value_t = 4)]
-    depth: u8,
-    /// CLUT position X,Y for 4/8-bit pages.
-    #[arg(long, default_value = "0,0")]
-    clut: String,
+    /// Texture depth for --texpage: 4, 8 or 15 (default 4).
+    #[arg(long, requires = "texpage", value_parser = parse_depth)]
+    depth: Option<u8>,
+    /// CLUT position X,Y for 4/8-bit pages (default 0,0).
+    #[arg(long, requires = "texpage")]
+    clut: Option<String>,
     /// 5-bit to 8-bit conversion.
     #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
     expand: ExpandArg,
 }
 
 type Result<T> = std::result::Result<T, String>;
+
+/// `--depth`: the texture page depths, 4, 8 or 15 bits.
+fn parse_depth(text: &str) -> Result<u8> {
+    match text.trim() {
+        "4" => Ok(4),
+        "8" => Ok(8),
+        "15" => Ok(15),
+        _ => Err(format!("expected 4, 8 or 15, got `{text}`")),
+    }
+}
 
 fn read_text(path: &Path) -> Result<String> {
     std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
@@ -163,13 +175,14 @@ fn parse_display(text: &str) -> Result<DisplayArea> {
     }
     let (x, y) = parse_pair(&format!("{},{}", parts[0], parts[1]), "--display")?;
     let (w, h) = parts[2].split_once('x').ok_or_else(err)?;
-    let w: u16 = w.parse().map_err(|_| err())?;
-    let h: u16 = h.parse().map_err(|_| err())?;
+    let w: u64 = w.trim().parse().map_err(|_| err())?;
+    let h: u64 = h.trim().parse().map_err(|_| err())?;
     if w == 0 || h == 0 || w > 1024 || h > 512 {
         return Err(format!(
             "--display: size {w}x{h} outside 1..=1024 x 1..=512"
         ));
     }
+    let (w, h) = (w as u16, h as u16);
     let color_24bit = match parts.get(3) {
         None => false,
         Some(&"24") => true,
@@ -203,55 +216,73 @@ fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
 }
 
 fn replay(args: &ReplayArgs) -> Result<()> {
+    let output = args.output.clone().unwrap_or_else(|| {
+        let stem = args.stream.file_stem().unwrap_or_default();
+        PathBuf::from(stem).with_extension("png")
+    });
+    output::image_format(&output)?;
+    let png_file = output::OutputFile::create(&output)?;
+    let raw_file = args
+        .raw
+        .as_deref()
+        .map(output::OutputFile::create)
+        .transpose()?;
     let text = read_text(&args.stream)?;
     let commands =
         command_stream::parse(&text).map_err(|e| format!("{}: {e}", args.stream.display()))?;
     let mut gpu = Gpu::new();
     command_stream::run(&mut gpu, &commands);
     let vram = gpu.vram().as_slice();
-    let output = args.output.clone().unwrap_or_else(|| {
-        let stem = args.stream.file_stem().unwrap_or_default();
-        PathBuf::from(stem).with_extension("png")
-    });
     let expand = Expand::from(args.expand);
     let img = match args.region {
         Region::Vram => vram_image::vram_image(vram, expand),
         Region::Display => vram_image::display_image(vram, gpu.display_area(), expand),
     };
-    vram_image::save_png(&img, &output).map_err(|e| e.to_string())?;
-    eprintln!("wrote {}", output.display());
-    if let Some(raw) = &args.raw {
-        std::fs::write(raw, vram_image::raw_to_bytes(vram))
-            .map_err(|e| format!("{}: {e}", raw.display()))?;
-        eprintln!("wrote {}", raw.display());
+    if let Some(mut raw) = raw_file {
+        let path = raw.path().to_path_buf();
+        std::io::Write::write_all(raw.writer()?, &vram_image::raw_to_bytes(vram))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        raw.commit()?;
+        eprintln!("wrote {}", path.display());
     }
+    output::write_image(img, png_file)?;
+    eprintln!("wrote {}", output.display());
     Ok(())
 }
 
 fn dump(args: &DumpArgs) -> Result<()> {
+    output::image_format(&args.output)?;
+    if args.display.is_some() && (args.region != Region::Display || args.texpage.is_some()) {
+        return Err("--display needs --region display (and no --texpage)".into());
+    }
+    if args.display.is_some() {
+        parse_display(args.display.as_deref().unwrap_or_default())?;
+    }
+    let out = output::OutputFile::create(&args.output)?;
     let bytes = std::fs::read(&args.raw).map_err(|e| format!("{}: {e}", args.raw.display()))?;
     let vram =
         vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", args.raw.display()))?;
     let expand = Expand::from(args.expand);
     if let Some(page) = &args.texpage {
         let (px, py) = parse_pair(page, "--texpage")?;
-        let depth = match args.depth {
+        let depth = match args.depth.unwrap_or(4) {
             4 => PageDepth::Clut4,
             8 => PageDepth::Clut8,
-            15 | 16 => PageDepth::Direct15,
+            15 => PageDepth::Direct15,
             d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
         };
-        let clut = parse_pair(&args.clut, "--clut")?;
+        let clut = parse_pair(args.clut.as_deref().unwrap_or("0,0"), "--clut")?;
         let img = vram_image::texture_page_image(&vram, px, py, depth, clut, expand);
-        vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
+        output::write_image(img, out)?;
     } else {
         let img = match args.region {
             Region::Vram => vram_image::vram_image(&vram, expand),
             Region::Display => {
-                vram_image::display_image(&vram, parse_display(&args.display)?, expand)
+                let area = parse_display(args.display.as_deref().unwrap_or("0,0,320x240"))?;
+                vram_image::display_image(&vram, area, expand)
             }
         };
-        vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
+        output::write_image(img, out)?;
     }
     eprintln!("wrote {}", args.output.display());
     Ok(())

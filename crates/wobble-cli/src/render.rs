@@ -1,10 +1,14 @@
 //! `wobble render`: the scene pipeline driven from the command line.
 
 use indicatif::{ProgressBar, ProgressStyle};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
 use wobble::scene::{Divide, Scene, WIDTHS};
+
+/// Largest estimated output written without `--large-output`.
+pub const MAX_OUTPUT_BYTES: u64 = 256_000_000;
 
 /// Most frames one command renders.
 pub const MAX_FRAMES: u32 = 100_000;
@@ -49,6 +53,9 @@ pub struct RenderArgs {
     /// Non-hardware: perspective-correct texture coordinates.
     #[arg(long)]
     pub perspective_uv: bool,
+    /// Write outputs estimated above 256 MB (many frames) instead of refusing.
+    #[arg(long)]
+    pub large_output: bool,
 }
 
 /// The GTE divide, as `--divide` takes it (the scene's `[accuracy] divide`).
@@ -119,10 +126,57 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };
-    let mut renderer = Renderer::new(scene, options).map_err(|e| e.to_string())?;
+    crate::output::image_format(&args.output)?;
+    let gif_path = match &args.gif {
+        Some(path) => Some(path.clone()),
+        None if args.frames > 1 && args.png_dir.is_none() => {
+            Some(args.output.with_extension("gif"))
+        }
+        None => None,
+    };
+    // `-o anim.gif --frames N`: the output is the animation itself.
+    let last_frame = if gif_path.as_ref() == Some(&args.output) {
+        None
+    } else {
+        Some(crate::output::OutputFile::create(&args.output)?)
+    };
     if let Some(dir) = &args.png_dir {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        crate::output::check_dir(dir)?;
     }
+    let mut gif_file = gif_path
+        .as_deref()
+        .map(crate::output::OutputFile::create)
+        .transpose()?;
+    let (w, h) = (
+        u64::from(scene.screen.width),
+        u64::from(scene.screen.height),
+    );
+    let frame_bytes = if args.png_dir.is_some() {
+        w * h / 4
+    } else if gif_path.is_some() {
+        w * h / 16
+    } else {
+        0
+    };
+    let estimate = frame_bytes * u64::from(args.frames);
+    if estimate > MAX_OUTPUT_BYTES && !args.large_output {
+        return Err(format!(
+            "--frames {} would write about {} MB of {} (estimated at {:.1} KB a frame); fewer \
+             frames, a smaller --size, or --large-output to write it anyway",
+            args.frames,
+            estimate / 1_000_000,
+            if args.png_dir.is_some() {
+                "PNG frames"
+            } else {
+                "GIF"
+            },
+            frame_bytes as f64 / 1000.0
+        ));
+    }
+    let mut renderer = Renderer::new(scene, options).map_err(|e| e.to_string())?;
+    let plain_progress = args.frames > 1 && !std::io::stderr().is_terminal();
+    let progress_step = (args.frames / 10).max(1);
     let progress = if args.frames > 1 {
         let bar = ProgressBar::new(args.frames as u64);
         if let Ok(style) = ProgressStyle::with_template("{bar:40} {pos}/{len} frames {eta}") {
@@ -132,24 +186,15 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     } else {
         ProgressBar::hidden()
     };
-    let gif_path = match &args.gif {
-        Some(path) => Some(path.clone()),
-        None if args.frames > 1 && args.png_dir.is_none() => {
-            Some(args.output.with_extension("gif"))
-        }
-        None => None,
-    };
-    let mut gif = match &gif_path {
-        Some(path) => {
-            let file =
-                std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-            let mut encoder = image::codecs::gif::GifEncoder::new_with_speed(file, 10);
+    let mut gif = match (&mut gif_file, &gif_path) {
+        (Some(file), Some(path)) => {
+            let mut encoder = image::codecs::gif::GifEncoder::new_with_speed(file.writer()?, 10);
             encoder
                 .set_repeat(image::codecs::gif::Repeat::Infinite)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
             Some(encoder)
         }
-        None => None,
+        _ => None,
     };
     let start = Instant::now();
     let mut total = FrameStats::default();
@@ -160,8 +205,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             let img = renderer.image();
             if let Some(dir) = &args.png_dir {
                 let path = dir.join(format!("frame{frame:05}.png"));
-                img.save_with_format(&path, image::ImageFormat::Png)
-                    .map_err(|e| format!("{}: {e}", path.display()))?;
+                crate::output::save_image(img.clone(), &path)?;
             }
             if let (Some(encoder), Some(path)) = (gif.as_mut(), &gif_path) {
                 let rgba = image::DynamicImage::ImageRgb8(img).to_rgba8();
@@ -172,26 +216,54 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             }
         }
         progress.inc(1);
+        if plain_progress && ((frame + 1) % progress_step == 0 || frame + 1 == args.frames) {
+            eprintln!("rendered {}/{} frames", frame + 1, args.frames);
+        }
     }
     progress.finish_and_clear();
     drop(gif);
+    if let Some(file) = gif_file {
+        file.commit()?;
+    }
     let elapsed = start.elapsed();
-    renderer
-        .image()
-        .save_with_format(&args.output, image::ImageFormat::Png)
-        .map_err(|e| format!("{}: {e}", args.output.display()))?;
-    Ok(format!(
+    let mut written = Vec::new();
+    if let Some(file) = last_frame {
+        crate::output::write_image(renderer.image(), file)?;
+        written.push(format!("{} (last frame)", args.output.display()));
+    }
+    if let Some(path) = &gif_path {
+        written.push(format!("{} ({} frames)", path.display(), args.frames));
+    }
+    if let Some(dir) = &args.png_dir {
+        written.push(format!(
+            "{} ({} frames)",
+            dir.join(format!("frame00000..frame{:05}.png", args.frames - 1))
+                .display(),
+            args.frames
+        ));
+    }
+    let mut summary = format!(
         "{} frame(s) -> {}: {} polygons drawn, {} culled (NCLIP), {} off screen, {} dropped \
-         (whole-polygon clip); GTE {:.2} ms, OT {:.2} ms, GPU {:.2} ms; total {:.2} s",
+         ({}); GTE {:.2} ms, OT {:.2} ms, GPU {:.2} ms; total {:.2} s",
         args.frames,
-        args.output.display(),
+        written.join(", "),
         total.drawn,
         total.culled,
         total.offscreen,
         total.dropped,
+        if total.capped > 0 {
+            "whole-polygon clip, and past the per-frame polygon cap"
+        } else {
+            "whole-polygon clip"
+        },
         total.gte.as_secs_f64() * 1e3,
         total.ot.as_secs_f64() * 1e3,
         total.gpu.as_secs_f64() * 1e3,
         elapsed.as_secs_f64()
-    ))
+    );
+    if let Some(cap) = wobble::pipeline::cap_message(&total) {
+        summary.push('\n');
+        summary.push_str(&cap);
+    }
+    Ok(summary)
 }

@@ -188,3 +188,113 @@ fn dump_rejects_wrong_size() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("got 100"));
 }
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `dump` refuses arguments that would be ignored or are out of range, saying why.
+#[test]
+fn dump_argument_errors() {
+    let raw = raw_vram();
+    let raw = raw.to_str().unwrap();
+    let png = tmp("dump-args.png");
+    let png = png.to_str().unwrap();
+    let o = wobble(&[
+        "dump",
+        raw,
+        "-o",
+        png,
+        "--region",
+        "display",
+        "--display",
+        "0,0,100000x100000",
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("outside 1..=1024 x 1..=512"),
+        "{}",
+        stderr(&o)
+    );
+    let o = wobble(&["dump", raw, "-o", png, "--texpage", "64,0", "--depth", "16"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("4, 8 or 15"), "{}", stderr(&o));
+    for extra in [["--depth", "8"], ["--clut", "0,1"]] {
+        let o = wobble(&["dump", raw, "-o", png, extra[0], extra[1]]);
+        assert!(!o.status.success(), "{extra:?} without --texpage");
+        assert!(stderr(&o).contains("--texpage"), "{}", stderr(&o));
+    }
+    let o = wobble(&["dump", raw, "-o", png, "--display", "0,0,256x240"]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--region display"), "{}", stderr(&o));
+}
+
+/// `-o` picks the image format from the extension, or refuses with the list.
+#[test]
+fn output_format_from_extension() {
+    let raw = raw_vram();
+    let raw = raw.to_str().unwrap();
+    for (ext, format) in [
+        ("bmp", image::ImageFormat::Bmp),
+        ("tga", image::ImageFormat::Tga),
+        ("ppm", image::ImageFormat::Pnm),
+        ("gif", image::ImageFormat::Gif),
+        ("PNG", image::ImageFormat::Png),
+    ] {
+        let out = tmp(&format!("fmt.{ext}"));
+        let o = wobble(&["dump", raw, "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{ext}: {}", stderr(&o));
+        let bytes = std::fs::read(&out).unwrap();
+        if format != image::ImageFormat::Tga {
+            // TGA has no signature to recognise it by.
+            assert_eq!(image::guess_format(&bytes).ok(), Some(format), "{ext}");
+        }
+        if format != image::ImageFormat::Gif {
+            // Lossless formats: the first pixel is red 31 expanded to 255.
+            let img = image::load_from_memory_with_format(&bytes, format)
+                .unwrap()
+                .to_rgb8();
+            assert_eq!(img.get_pixel(0, 0).0, [255, 0, 0], "{ext}");
+        }
+    }
+    for name in ["out.txt", "out.jpg", "noextension"] {
+        let out = tmp(name);
+        let o = wobble(&["dump", raw, "-o", out.to_str().unwrap()]);
+        assert!(!o.status.success(), "{name}");
+        let e = stderr(&o);
+        assert!(e.contains(".png, .gif, .bmp, .tga, .ppm"), "{name}: {e}");
+        assert!(!out.exists(), "{name} written");
+    }
+}
+
+/// Output paths are checked before the work: an unwritable `--raw` fails before the PNG is
+/// written, and nothing is left behind.
+#[test]
+fn replay_checks_outputs_before_writing() {
+    let stream = root()
+        .join("fixtures/gpu")
+        .read_dir()
+        .unwrap()
+        .find_map(|e| {
+            let p = e.ok()?.path();
+            (p.extension()? == "gpu").then_some(p)
+        });
+    let stream = stream.expect("a .gpu fixture");
+    let dir = tmp("replay-check");
+    std::fs::create_dir_all(&dir).unwrap();
+    let png = dir.join("out.png");
+    let _ = std::fs::remove_file(&png);
+    let o = wobble(&[
+        "replay",
+        stream.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--raw",
+        "/nonexistent-dir/x.vram.bin",
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("/nonexistent-dir"), "{}", stderr(&o));
+    assert!(!png.exists(), "PNG written before the raw path was checked");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(left.is_empty(), "temporary files left: {left:?}");
+}

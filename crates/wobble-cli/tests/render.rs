@@ -91,4 +91,52 @@ fn frames_without_gif_flag_write_a_gif_beside_the_png() {
     ))
     .unwrap();
     assert_eq!(decoder.into_frames().count(), 2);
+    // The summary names both files written.
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        summary.contains(&format!("{} (last frame)", out.display()))
+            && summary.contains(&format!("{} (2 frames)", gif.display())),
+        "{summary}"
+    );
+}
+
+/// The README's largest size works on the default scene (its CLUT goes beside the buffers).
+#[test]
+fn default_scene_at_640x256() {
+    let out = write("big.png", "");
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(["render", "--size", "640x256", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let img = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (640, 256));
+}
+
+/// Many frames: plain progress lines when stderr is not a terminal, and an output
+/// estimated above the limit is refused before any work unless forced.
+#[test]
+fn progress_lines_and_large_output_refusal() {
+    let out = write("progress.png", "");
+    let gif = out.with_extension("gif");
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(["render", "--frames", "20", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        e.contains("rendered 2/20 frames") && e.contains("rendered 20/20 frames"),
+        "{e}"
+    );
+    // 100000 frames at 320x240: 320 * 240 / 16 = 4800 bytes a frame, 480 MB in all.
+    std::fs::remove_file(&gif).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args(["render", "--frames", "100000", "-o", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("480 MB") && e.contains("--large-output"), "{e}");
+    assert!(!gif.exists());
 }

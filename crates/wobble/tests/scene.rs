@@ -122,3 +122,165 @@ fn accuracy_table() {
     let e = error("[accuracy]\ndivide = \"fast\"\n", "acc1.toml");
     assert!(e.contains("acc1.toml") && e.contains("fast"), "{e}");
 }
+
+/// Every float field is checked, and the error names the field as written in the file.
+#[test]
+fn every_float_field_is_validated_by_name() {
+    let object = "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\n";
+    let cases: [(String, &str); 14] = [
+        ("[light]\ndirection = [0, 0, 0]\n".into(), "light.direction"),
+        (
+            "[light]\ndirection = [nan, 1, 0]\n".into(),
+            "light.direction[0]",
+        ),
+        (
+            "[light]\ndirection = [1, inf, 0]\n".into(),
+            "light.direction[1]",
+        ),
+        (
+            "[light]\ndirection = [1, 0, 1e308]\n".into(),
+            "light.direction[2]",
+        ),
+        (
+            "[camera]\nposition = [0, nan, 0]\n".into(),
+            "camera.position[1]",
+        ),
+        (
+            "[camera]\nrotation = [0, 0, -inf]\n".into(),
+            "camera.rotation[2]",
+        ),
+        ("[fog]\nnear = nan\n".into(), "fog.near"),
+        ("[fog]\nfar = inf\n".into(), "fog.far"),
+        (
+            format!("{object}position = [1e308, 0, 0]\n"),
+            "object 1: position[0]",
+        ),
+        (
+            format!("{object}rotation = [0, nan, 0]\n"),
+            "object 1: rotation[1]",
+        ),
+        (format!("{object}spin = [0, 0, inf]\n"), "object 1: spin[2]"),
+        (format!("{object}scale = nan\n"), "object 1: scale"),
+        (format!("{object}scale = 0\n"), "object 1: scale"),
+        (format!("{object}scale = 1e308\n"), "object 1: scale"),
+    ];
+    for (i, (text, field)) in cases.iter().enumerate() {
+        let e = error(text, &format!("num{i}.toml"));
+        assert!(
+            e.contains(&format!("num{i}.toml: {field} must be")),
+            "case {i} ({field}): {e}"
+        );
+    }
+    // Neighbouring valid values still load.
+    Scene::load(&write(
+        "num-ok.toml",
+        "[light]\ndirection = [0, 0, 0.001]\n[camera]\nposition = [0, 0, -1000000]\n",
+    ))
+    .unwrap();
+}
+
+/// A non-finite number in `v`, `vt` or `vn` is refused with the file's own line number.
+#[test]
+fn non_finite_obj_numbers_name_the_line() {
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    let cases = [
+        (
+            format!("# a comment\n\nv 1 2 3\nv nan 0 0\n{tri}f 2 3 4\n"),
+            "line 4",
+            "`v`",
+        ),
+        (
+            format!("{tri}vt 0 0\nvt inf 0\nf 1/1 2/2 3/1\n"),
+            "line 5",
+            "`vt`",
+        ),
+        (
+            format!("{tri}vn 0 0 1\nvn 0 -inf 0\nf 1//1 2//2 3//1\n"),
+            "line 5",
+            "`vn`",
+        ),
+        // Beyond f32: the reader would hold infinity.
+        (format!("{tri}v 1e39 0 0\nf 1 2 4\n"), "line 4", "`v`"),
+    ];
+    for (i, (text, line, keyword)) in cases.iter().enumerate() {
+        let obj = write(&format!("nf{i}.obj"), text);
+        let e = Mesh::load_obj(&obj).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("nf{i}.obj: {line}: {keyword}")) && e.contains("not finite"),
+            "case {i}: {e}"
+        );
+    }
+}
+
+/// Coordinates far too large for any sensible scale are said so plainly, without
+/// 31-digit numbers or a suggested scale of 0.000000.
+#[test]
+fn huge_obj_coordinates_are_reported_plainly() {
+    let obj = write("huge.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n");
+    let scene = "[[mesh]]\nname = \"h\"\nfile = \"huge.obj\"\n[[object]]\nmesh = \"h\"\n";
+    assert!(obj.exists());
+    let e = error(scene, "huge.toml");
+    assert!(e.contains("far too large") && e.contains("1.0e30"), "{e}");
+    assert!(!e.contains("0.000000") && !e.contains("000000000"), "{e}");
+}
+
+/// A frame with more polygons than the per-frame cap: the stats say the cap was reached
+/// and the message names the cap and how to stay under it.
+#[test]
+fn polygon_cap_is_named() {
+    use wobble::pipeline::{MAX_POLYGONS, PipelineOptions, Renderer, cap_message};
+    use wobble::scene::mesh::{MeshFace, MeshVertex};
+    use wobble::scene::{MeshAsset, Object};
+    // One small quad facing the camera (at z = -1000 looking +Z), repeated past the cap.
+    let v = |x: f64, y: f64| MeshVertex {
+        position: [x, y, 0.0],
+        normal: [0.0, 0.0, -1.0],
+        uv: [0.0, 0.0],
+    };
+    let face = MeshFace {
+        indices: [0, 1, 2, 3],
+        quad: true,
+    };
+    let count = MAX_POLYGONS + 1000;
+    let mesh = Mesh {
+        vertices: vec![v(-1.0, -1.0), v(1.0, -1.0), v(-1.0, 1.0), v(1.0, 1.0)],
+        faces: vec![face; count],
+    };
+    let mut scene = Scene::default_scene();
+    scene.textures.clear();
+    scene.light = None;
+    scene.fog = None;
+    scene.camera.position = [0.0, 0.0, -1000.0];
+    scene.camera.rotation = [0.0; 3];
+    scene.meshes = vec![MeshAsset {
+        name: "many".into(),
+        mesh,
+    }];
+    scene.objects = vec![Object {
+        mesh: 0,
+        texture: None,
+        position: [0.0; 3],
+        rotation: [0.0; 3],
+        spin: [0.0; 3],
+        scale: 5.0,
+        color: [128, 128, 128],
+        blend: None,
+        tessellation: 0,
+    }];
+    let mut r = Renderer::new(scene.clone(), PipelineOptions::default()).unwrap();
+    let stats = r.render_frame(0);
+    assert_eq!(stats.drawn, MAX_POLYGONS);
+    assert_eq!(stats.dropped, 1000);
+    assert_eq!(stats.capped, 1);
+    let m = cap_message(&stats).unwrap();
+    assert!(
+        m.contains("cap of 131072 polygons") && m.contains("tessellation"),
+        "{m}"
+    );
+    // Under the cap: nothing said.
+    scene.meshes[0].mesh.faces.truncate(10);
+    let mut r = Renderer::new(scene, PipelineOptions::default()).unwrap();
+    let stats = r.render_frame(0);
+    assert_eq!((stats.drawn, stats.capped), (10, 0));
+    assert_eq!(cap_message(&stats), None);
+}

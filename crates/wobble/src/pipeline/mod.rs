@@ -41,6 +41,21 @@ pub const OT_SHIFT: u32 = 3;
 /// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
 pub const MAX_POLYGONS: usize = 1 << 17;
 
+/// What to say when frames reached [`MAX_POLYGONS`]: the cap, why it is there, and how to
+/// stay under it. `None` when no frame did.
+pub fn cap_message(stats: &FrameStats) -> Option<String> {
+    (stats.capped > 0).then(|| {
+        format!(
+            "{} frame(s) reached the per-frame cap of {MAX_POLYGONS} polygons (the primitive \
+             buffer must fit the console's RAM): polygons past it were dropped. To draw them \
+             all, lower the mesh's face count or the tessellation level (`--tessellation 0`, \
+             or `tessellation` in the scene), or split the model across frames; the cap \
+             itself is `MAX_POLYGONS` in crates/wobble/src/pipeline/mod.rs",
+            stats.capped
+        )
+    })
+}
+
 /// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
 /// are split while their object's tessellation level allows.
 pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
@@ -129,8 +144,12 @@ pub struct FrameStats {
     /// Polygons entirely off screen.
     pub offscreen: usize,
     /// Polygons dropped whole: a vertex behind the near plane (SZ3 or divide overflow flag),
-    /// a saturated SX/SY, or an extent the GPU would drop.
+    /// a saturated SX/SY, or an extent the GPU would drop; also polygons past the
+    /// per-frame cap ([`MAX_POLYGONS`]), see `capped`.
     pub dropped: usize,
+    /// Frames that filled the polygon list to [`MAX_POLYGONS`]: further polygons in them
+    /// were dropped (counted in `dropped`). 0 or 1 for one frame, summed by `accumulate`.
+    pub capped: usize,
     /// Time in GTE work (transform, project, cull, light, AVSZ).
     pub gte: Duration,
     /// Time building packets and linking them into the ordering table.
@@ -147,6 +166,7 @@ impl FrameStats {
         self.culled += other.culled;
         self.offscreen += other.offscreen;
         self.dropped += other.dropped;
+        self.capped += other.capped;
         self.gte += other.gte;
         self.ot += other.ot;
         self.gpu += other.gpu;
@@ -306,6 +326,7 @@ impl Renderer {
         let mut stats = FrameStats::default();
         let t0 = Instant::now();
         self.gte_stage(frame, &mut stats);
+        stats.capped = usize::from(self.scratch.len() >= MAX_POLYGONS);
         let t1 = Instant::now();
         self.ot_stage(&mut stats);
         let t2 = Instant::now();

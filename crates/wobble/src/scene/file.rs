@@ -174,6 +174,12 @@ impl Scene {
                     },
                 )?),
             };
+            super::check_number(
+                || format!("object {}: scale", i + 1),
+                o.scale,
+                super::NumberRule::Positive,
+            )
+            .map_err(invalid)?;
             meshes[mesh]
                 .mesh
                 .check_scale(&format!("object {} (mesh `{}`)", i + 1, o.mesh), o.scale)

@@ -52,6 +52,16 @@ pub enum MeshError {
         /// 1-based vertex number.
         vertex: usize,
     },
+    /// A `v`, `vt` or `vn` line holds a number that is NaN or infinite, or too large for
+    /// the reader's 32-bit floats.
+    NotFiniteLine {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line in the file.
+        line: usize,
+        /// The line's keyword: `v`, `vt` or `vn`.
+        keyword: String,
+    },
     /// A face's indices run past the index list.
     IndicesPastEnd {
         /// The file.
@@ -101,6 +111,16 @@ impl fmt::Display for MeshError {
             MeshError::NotFinite { file, vertex } => {
                 write!(f, "{}: vertex {vertex} is not finite", file.display())
             }
+            MeshError::NotFiniteLine {
+                file,
+                line,
+                keyword,
+            } => write!(
+                f,
+                "{}: line {line}: `{keyword}` has a number that is not finite (NaN, infinity, or \
+                 beyond 3.4e38)",
+                file.display()
+            ),
             MeshError::IndicesPastEnd { file } => write!(
                 f,
                 "{}: face indices run past the index list",
@@ -117,13 +137,41 @@ impl fmt::Display for MeshError {
                 name,
                 extent,
                 scale,
-            } => write!(
-                f,
-                "{name}: coordinates up to {extent} times scale {scale} exceed the GTE's 16-bit \
-                 range (32767); use scale <= {:.6}",
-                MAX_COORDINATE / extent
-            ),
+            } => {
+                let limit = MAX_COORDINATE / extent;
+                if limit >= MIN_SUGGESTED_SCALE {
+                    write!(
+                        f,
+                        "{name}: coordinates up to {} times scale {} exceed the GTE's 16-bit \
+                         range (32767); use scale <= {limit:.6}",
+                        plain(*extent),
+                        plain(*scale)
+                    )
+                } else {
+                    write!(
+                        f,
+                        "{name}: the mesh's coordinates are far too large (up to {}); the GTE \
+                         takes vertices within +-32767 after scaling, which would need a scale \
+                         below {}: rescale the model itself",
+                        plain(*extent),
+                        plain(limit)
+                    )
+                }
+            }
         }
+    }
+}
+
+/// Below this, a suggested scale would print as zeros: the mesh is reported as far too large.
+const MIN_SUGGESTED_SCALE: f64 = 1e-6;
+
+/// A number for a message: as is when of ordinary size, in exponent form (`1.0e30`) when
+/// it would print with many digits.
+fn plain(v: f64) -> String {
+    if v != 0.0 && (v.abs() >= 1e9 || v.abs() < 1e-4) {
+        format!("{v:.1e}")
+    } else {
+        format!("{v}")
     }
 }
 
@@ -220,6 +268,18 @@ pub fn locate_obj_error(text: &str, error: tobj::LoadError) -> Option<usize> {
     None
 }
 
+/// The 1-based line and keyword of the first `v`, `vt` or `vn` line of an OBJ file with a
+/// number that reads as NaN or infinite in the reader's 32-bit floats (`tobj` accepts them).
+pub fn locate_non_finite(text: &str) -> Option<(usize, &str)> {
+    text.lines().enumerate().find_map(|(number, line)| {
+        let mut tokens = line.split_whitespace();
+        let keyword = tokens.next()?;
+        let vertex_data = matches!(keyword, "v" | "vt" | "vn");
+        (vertex_data && tokens.any(|t| t.parse::<f32>().is_ok_and(|v| !v.is_finite())))
+            .then_some((number + 1, keyword))
+    })
+}
+
 impl Mesh {
     /// Number of triangles (a quad counts two).
     pub fn triangle_count(&self) -> usize {
@@ -259,6 +319,15 @@ impl Mesh {
     /// texture coordinates are 0.
     pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
         let file = || path.to_path_buf();
+        if let Ok(text) = std::fs::read_to_string(path)
+            && let Some((line, keyword)) = locate_non_finite(&text)
+        {
+            return Err(MeshError::NotFiniteLine {
+                file: file(),
+                line,
+                keyword: keyword.to_string(),
+            });
+        }
         let options = tobj::LoadOptions {
             single_index: true,
             triangulate: false,

@@ -350,15 +350,15 @@ pub enum InvalidScene {
         /// The level given.
         level: u8,
     },
-    /// An object's position, rotation or spin is not finite.
-    ObjectNotFinite {
-        /// Object number.
-        object: usize,
-    },
-    /// An object's position is beyond +-1000000 units.
-    ObjectPosition {
-        /// Object number.
-        object: usize,
+    /// A number outside what its field allows (docs/formats.md, "Limits"); `field` names
+    /// it as in the scene file, e.g. `light.direction[0]` or `object 2: scale`.
+    Number {
+        /// The field.
+        field: String,
+        /// The value given.
+        value: f64,
+        /// What the field allows.
+        rule: NumberRule,
     },
     /// An object's mesh or texture index is past the lists.
     ObjectIndex {
@@ -372,8 +372,82 @@ pub enum InvalidScene {
         /// What is wrong.
         source: InvalidTexture,
     },
-    /// The camera's numbers are not finite or beyond +-1000000.
-    Camera,
+}
+
+/// What a numeric scene field allows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NumberRule {
+    /// Finite and within +-[`MAX_NUMBER`].
+    Finite,
+    /// Finite, within +-[`MAX_NUMBER`] and above zero.
+    Positive,
+    /// A direction: every component finite and within +-[`MAX_NUMBER`], and not all of them
+    /// below [`MIN_DIRECTION`] in size (the direction must have a length).
+    Direction,
+}
+
+/// Largest size of any number in a scene (docs/formats.md, "Limits").
+pub const MAX_NUMBER: f64 = 1e6;
+/// A direction (the light's) needs a component at least this large.
+pub const MIN_DIRECTION: f64 = 1e-6;
+
+impl fmt::Display for NumberRule {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NumberRule::Finite => write!(f, "a finite number within +-1000000"),
+            NumberRule::Positive => write!(f, "a finite number above 0 and at most 1000000"),
+            NumberRule::Direction => write!(
+                f,
+                "a direction: finite numbers within +-1000000, not all zero (some component \
+                 at least 0.000001 in size)"
+            ),
+        }
+    }
+}
+
+/// Check one number against `rule`; `field` names it in the error.
+fn check_number(
+    field: impl Fn() -> String,
+    value: f64,
+    rule: NumberRule,
+) -> Result<(), InvalidScene> {
+    let ok = value.is_finite()
+        && value.abs() <= MAX_NUMBER
+        && (rule != NumberRule::Positive || value > 0.0);
+    if ok {
+        Ok(())
+    } else {
+        Err(InvalidScene::Number {
+            field: field(),
+            value,
+            rule,
+        })
+    }
+}
+
+/// Check every component of `values`; `name` is the field, components are shown as `[i]`.
+fn check_numbers(name: &str, values: &[f64], rule: NumberRule) -> Result<(), InvalidScene> {
+    let component_rule = match rule {
+        NumberRule::Direction => NumberRule::Finite,
+        r => r,
+    };
+    for (i, &v) in values.iter().enumerate() {
+        check_number(|| format!("{name}[{i}]"), v, component_rule).map_err(|e| match e {
+            InvalidScene::Number { field, value, .. } => {
+                InvalidScene::Number { field, value, rule }
+            }
+            e => e,
+        })?;
+    }
+    if rule == NumberRule::Direction && values.iter().all(|v| v.abs() < MIN_DIRECTION) {
+        let value = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        return Err(InvalidScene::Number {
+            field: name.to_string(),
+            value,
+            rule,
+        });
+    }
+    Ok(())
 }
 
 impl fmt::Display for InvalidScene {
@@ -422,20 +496,14 @@ impl fmt::Display for InvalidScene {
                 f,
                 "object {object}: tessellation must be 0..=4, got {level}"
             ),
-            InvalidScene::ObjectNotFinite { object } => {
-                write!(f, "object {object}: numbers must be finite")
-            }
-            InvalidScene::ObjectPosition { object } => {
-                write!(f, "object {object}: position beyond +-1000000 units")
+            InvalidScene::Number { field, value, rule } => {
+                write!(f, "{field} must be {rule}, got {value}")
             }
             InvalidScene::ObjectIndex { object } => {
                 write!(f, "object {object}: mesh or texture index out of range")
             }
             InvalidScene::Texture { texture, source } => {
                 write!(f, "texture `{texture}`: {source}")
-            }
-            InvalidScene::Camera => {
-                write!(f, "camera: numbers must be finite and within +-1000000")
             }
         }
     }
@@ -456,8 +524,10 @@ pub const WIDTHS: [u16; 5] = [256, 320, 368, 512, 640];
 pub const MAX_TESSELLATION: u8 = 4;
 
 impl Scene {
-    /// Check ranges: screen size, tessellation, camera H, finite numbers.
+    /// Check ranges: screen size, tessellation, camera H, and every number (finite, within
+    /// +-1000000; scales positive; the light direction not zero).
     pub fn validate(&self) -> Result<(), InvalidScene> {
+        use NumberRule::{Direction, Finite, Positive};
         if !WIDTHS.contains(&self.screen.width) {
             return Err(InvalidScene::ScreenWidth(self.screen.width));
         }
@@ -467,13 +537,20 @@ impl Scene {
         if self.camera.h == 0 {
             return Err(InvalidScene::CameraH);
         }
-        if let Some(fog) = &self.fog
-            && fog.coefficients(self.camera.h).is_none()
-        {
-            return Err(InvalidScene::Fog {
-                near: fog.near,
-                far: fog.far,
-            });
+        check_numbers("camera.position", &self.camera.position, Finite)?;
+        check_numbers("camera.rotation", &self.camera.rotation, Finite)?;
+        if let Some(light) = &self.light {
+            check_numbers("light.direction", &light.direction, Direction)?;
+        }
+        if let Some(fog) = &self.fog {
+            check_number(|| "fog.near".into(), fog.near, Positive)?;
+            check_number(|| "fog.far".into(), fog.far, Positive)?;
+            if fog.coefficients(self.camera.h).is_none() {
+                return Err(InvalidScene::Fog {
+                    near: fog.near,
+                    far: fog.far,
+                });
+            }
         }
         for (i, o) in self.objects.iter().enumerate() {
             let object = i + 1;
@@ -483,13 +560,10 @@ impl Scene {
                     level: o.tessellation,
                 });
             }
-            let numbers = o.position.iter().chain(&o.rotation).chain(&o.spin);
-            if numbers.clone().any(|v| !v.is_finite()) {
-                return Err(InvalidScene::ObjectNotFinite { object });
-            }
-            if o.position.iter().any(|v| v.abs() > 1e6) {
-                return Err(InvalidScene::ObjectPosition { object });
-            }
+            check_numbers(&format!("object {object}: position"), &o.position, Finite)?;
+            check_numbers(&format!("object {object}: rotation"), &o.rotation, Finite)?;
+            check_numbers(&format!("object {object}: spin"), &o.spin, Finite)?;
+            check_number(|| format!("object {object}: scale"), o.scale, Positive)?;
             if o.mesh >= self.meshes.len() || o.texture.is_some_and(|t| t >= self.textures.len()) {
                 return Err(InvalidScene::ObjectIndex { object });
             }
@@ -499,10 +573,6 @@ impl Scene {
                 texture: t.name.clone(),
                 source,
             })?;
-        }
-        let cam = self.camera.position.iter().chain(&self.camera.rotation);
-        if cam.clone().any(|v| !v.is_finite() || v.abs() > 1e6) {
-            return Err(InvalidScene::Camera);
         }
         Ok(())
     }

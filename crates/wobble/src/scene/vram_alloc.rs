@@ -2,7 +2,10 @@
 //!
 //! Layout: display buffers at (0, 0) and (0, height) (`width` x `height` each, height at
 //! most 256); texture pages (64-halfword columns, rows at y = 0 and 256) to the right of the
-//! buffers; CLUTs in the lines below the second buffer (x multiple of 16).
+//! buffers; CLUTs in the lines below the second buffer (x multiple of 16). When the buffers
+//! leave no line below them (height 256), the last 64-halfword column of page row 1
+//! (x 960..1023, y 256..511) holds the CLUTs instead and takes no texture: room for 4-bit
+//! CLUTs (16 entries) only, four to a line.
 
 use super::texture::Texture;
 use std::fmt;
@@ -68,21 +71,43 @@ pub struct VramAllocator {
     next: u16,
     clut_x: u16,
     clut_y: u16,
+    clut_left: u16,
     clut_right: u16,
     clut_bottom: u16,
+    /// CLUTs live in the last column of page row 1, which takes no texture.
+    clut_beside: bool,
 }
+
+/// Left edge of the CLUT column used when there is no room below the buffers.
+pub const CLUT_COLUMN_X: u16 = 960;
 
 impl VramAllocator {
     /// An allocator for display buffers of `width` x `height` (two, stacked).
     pub fn new(width: u16, height: u16) -> Self {
         let first_column = width.div_ceil(64).min(16);
-        Self {
-            first_column,
-            next: 0,
-            clut_x: 0,
-            clut_y: height.saturating_mul(2).min(512),
-            clut_right: width.min(1024),
-            clut_bottom: 512,
+        let below = height.saturating_mul(2).min(512);
+        if below < 512 {
+            Self {
+                first_column,
+                next: 0,
+                clut_x: 0,
+                clut_y: below,
+                clut_left: 0,
+                clut_right: width.min(1024),
+                clut_bottom: 512,
+                clut_beside: false,
+            }
+        } else {
+            Self {
+                first_column,
+                next: 0,
+                clut_x: CLUT_COLUMN_X,
+                clut_y: 256,
+                clut_left: CLUT_COLUMN_X,
+                clut_right: 1024,
+                clut_bottom: 512,
+                clut_beside: first_column < 16,
+            }
         }
     }
 
@@ -96,13 +121,20 @@ impl VramAllocator {
             return Err(full());
         }
         // Slots run along page row 0, then page row 1; a texture never straddles rows.
+        let row_len = |row: u16| {
+            if row == 1 && self.clut_beside {
+                per_row - 1
+            } else {
+                per_row
+            }
+        };
         let mut row = self.next / per_row;
         let mut col = self.next % per_row;
-        if col + columns > per_row {
+        if col + columns > row_len(row) {
             row += 1;
             col = 0;
         }
-        if row > 1 {
+        if row > 1 || columns > row_len(row) {
             return Err(full());
         }
         self.next = row * per_row + col + columns;
@@ -113,10 +145,12 @@ impl VramAllocator {
         } else {
             let len = u16::try_from(texture.clut.len()).unwrap_or(u16::MAX);
             if self.clut_x.saturating_add(len) > self.clut_right {
-                self.clut_x = 0;
+                self.clut_x = self.clut_left;
                 self.clut_y += 1;
             }
-            if self.clut_y >= self.clut_bottom || len > self.clut_right {
+            if self.clut_y >= self.clut_bottom
+                || len > self.clut_right.saturating_sub(self.clut_left)
+            {
                 return Err(VramAllocError::Clut { name: name.into() });
             }
             let at = (self.clut_x, self.clut_y);
@@ -156,6 +190,41 @@ mod tests {
         // 256-wide 15-bit needs four columns.
         let r = a.place("c", &tex(Depth::Direct15, 256)).unwrap();
         assert_eq!((r.page_x, r.clut), (448, None));
+    }
+
+    /// At height 256 the buffers fill VRAM's height: 4-bit CLUTs go to x 960..1023 of
+    /// lines 256..511, four to a line, and no texture overlaps them.
+    #[test]
+    fn cluts_beside_full_height_buffers() {
+        let mut a = VramAllocator::new(640, 256);
+        let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
+        assert_eq!((p.page_x, p.page_y, p.clut), (640, 0, Some((960, 256))));
+        let mut pages = vec![(p.page_x, p.page_y)];
+        let mut cluts = Vec::new();
+        for _ in 0..5 {
+            let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+            pages.push((q.page_x, q.page_y));
+            cluts.push(q.clut);
+        }
+        assert_eq!(
+            cluts,
+            [(976, 256), (992, 256), (1008, 256), (960, 257), (976, 257)].map(Some)
+        );
+        // Columns 10..15 of row 0 and 10..14 of row 1: eleven one-column textures in all.
+        while let Ok(q) = a.place("c", &tex(Depth::Clut4, 64)) {
+            pages.push((q.page_x, q.page_y));
+        }
+        assert_eq!(pages.len(), 11);
+        assert!(
+            pages.iter().all(|&(x, y)| y == 0 || x + 64 <= 960),
+            "{pages:?}"
+        );
+        // An 8-bit CLUT (256 entries) does not fit the 64-halfword column.
+        let mut b = VramAllocator::new(640, 256);
+        assert_eq!(
+            b.place("d", &tex(Depth::Clut8, 128)).unwrap_err(),
+            VramAllocError::Clut { name: "d".into() }
+        );
     }
 
     #[test]
