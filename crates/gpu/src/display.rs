@@ -137,7 +137,8 @@ impl Gpu {
 
     /// GPUSTAT (psx-spx "GPU Status Register"): draw mode bits 0-10, mask bits 11-12, display
     /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA/ready bits 25-28, DMA direction
-    /// 29-30. Bit 13 reads 1 and bit 31 0 (no video timing is modelled).
+    /// 29-30; bits 13 and 31 from the video timing ([`Gpu::interlace_field_bit`],
+    /// [`Gpu::line_parity_bit`]).
     pub fn gpustat(&self) -> u32 {
         let m = &self.draw.mode;
         let mut s = (m.page_x as u32 / 64) & 0xF;
@@ -157,7 +158,7 @@ impl Gpu {
         s |= (m.draw_to_display as u32) << 10;
         s |= (self.draw.mask.set as u32) << 11;
         s |= (self.draw.mask.check as u32) << 12;
-        s |= 1 << 13;
+        s |= (self.interlace_field_bit() as u32) << 13;
         let mode = self.display.mode as u32;
         s |= ((mode >> 7) & 1) << 14;
         s |= (m.texture_disable as u32) << 15;
@@ -183,6 +184,39 @@ impl Gpu {
         s |= (ready_read as u32) << 27;
         s |= (ready_dma as u32) << 28;
         s |= (self.display.dma_direction as u32) << 29;
+        s |= (self.line_parity_bit() as u32) << 31;
         s
+    }
+
+    /// GPUSTAT.13: 1 when GP1(08h) bit 5 (interlace) is clear, else the current field
+    /// (psx-spx "GPU Status Register"). Which field value the console reports first is not
+    /// recorded; the model's field 0 (the one showing the display start line) reads 0.
+    pub fn interlace_field_bit(&self) -> bool {
+        if self.display.mode & 0x20 == 0 {
+            true
+        } else {
+            self.timing.field() == 1
+        }
+    }
+
+    /// GPUSTAT.31: 0 during vblank; otherwise bit 0 of the VRAM line being displayed, which
+    /// changes every scanline in 240-line modes and every field in 480i (psx-spx "GPU Status
+    /// Register": "0=Even or Vblank, 1=Odd").
+    pub fn line_parity_bit(&self) -> bool {
+        if self.timing.in_vblank(&self.display) {
+            return false;
+        }
+        self.displayed_line_parity() == 1
+    }
+
+    /// Bit 0 of the VRAM line the current field shows (480i) or the current scanline shows
+    /// (other modes).
+    pub(crate) fn displayed_line_parity(&self) -> u32 {
+        let start = self.display.start_y as u32;
+        if self.display.mode & 0x24 == 0x24 {
+            (start + self.timing.field() as u32) & 1
+        } else {
+            (start + self.timing.display_line(&self.display)) & 1
+        }
     }
 }

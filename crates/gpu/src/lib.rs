@@ -17,12 +17,14 @@ pub mod primitive;
 pub mod rasterizer;
 pub mod state;
 pub mod texture;
+mod timing;
 mod transfer;
 
 use alloc::boxed::Box;
 use alloc::vec;
 
 pub use display::{DisplayArea, DisplayState};
+pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 use state::DrawState;
 use texture::ClutCache;
 
@@ -93,22 +95,53 @@ pub struct Gpu {
     gpuread_latch: u32,
     irq: bool,
     texture_disable_allowed: bool,
+    timing: timing::Timing,
 }
 
 impl Gpu {
-    /// A GPU in its reset state with all-zero VRAM.
+    /// An NTSC GPU in its reset state with all-zero VRAM.
     pub fn new() -> Self {
+        Self::with_standard(VideoStandard::Ntsc)
+    }
+
+    /// A GPU of a console of region `standard` at power-on: reset state, all-zero VRAM, the
+    /// display mode of that standard (GP1(08h) bit 3 set for PAL) and its video clock.
+    pub fn with_standard(standard: VideoStandard) -> Self {
+        let mut display = DisplayState::default();
+        if standard == VideoStandard::Pal {
+            display.mode |= 0x08;
+        }
         Self {
             vram: Vram::new(),
             draw: DrawState::default(),
             clut: ClutCache::default(),
             gp0: gp0::Gp0State::default(),
             read: transfer::ReadTransfer::default(),
-            display: DisplayState::default(),
+            display,
             gpuread_latch: 0,
             irq: false,
             texture_disable_allowed: false,
+            timing: timing::Timing::new(standard),
         }
+    }
+
+    /// The console region this GPU was built for (its video clock).
+    pub fn video_standard(&self) -> VideoStandard {
+        self.timing.standard()
+    }
+
+    /// Advance time by `cpu_cycles` CPU cycles (33.8688 MHz) and report what happened: dot
+    /// clocks and hblanks for the timers, vblank edges for IRQ0 (`docs/gpu.md`, "Video
+    /// timing"). Any split of a span of time into calls reports the same totals.
+    pub fn run(&mut self, cpu_cycles: u32) -> Events {
+        self.timing.run(cpu_cycles, &self.display)
+    }
+
+    /// CPU cycles until [`Gpu::run`] would report an hblank or vblank edge (rounded up, so
+    /// running exactly this many reaches it); `u32::MAX` when none comes. Dot counts are not
+    /// events.
+    pub fn cycles_until_next_event(&self) -> u32 {
+        self.timing.cycles_until_next_event(&self.display)
     }
 
     /// A block of GP0 words, as DMA2 delivers them.
