@@ -1,18 +1,19 @@
 //! GP1 display control (gpu.md §9) and the GPUSTAT register.
 
-use crate::Gpu;
 use crate::state::{BlendMode, TextureDepth};
+use crate::{Gpu, timing};
 
-/// The part of VRAM the display shows, from GP1(05h) and GP1(08h).
+/// The part of VRAM the display shows, from GP1(05h)-(08h).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DisplayArea {
     /// Left edge in VRAM halfwords.
     pub x: u16,
     /// Top line.
     pub y: u16,
-    /// Width in display pixels (256, 320, 368, 512 or 640).
+    /// Width in display pixels: the GP1(06h) range in dots, rounded to a multiple of 4
+    /// (320 for a 2560-cycle range at 8 cycles a dot).
     pub width: u16,
-    /// Height in lines (240, or 480 when interlaced at 480 lines).
+    /// Height in lines: the GP1(07h) range, doubled in 480i (240 for the reset range).
     pub height: u16,
     /// 24-bit colour display: each pixel spans 1.5 halfwords.
     pub color_24bit: bool,
@@ -53,20 +54,34 @@ impl Default for DisplayState {
 }
 
 impl DisplayState {
-    /// The displayed VRAM rectangle: width from mode bits 0-1 and 6 (256/320/512/640, 368),
-    /// height 480 when bits 2 and 5 (480 lines, interlace) are set, else 240; bit 4 24-bit.
+    /// The displayed VRAM rectangle. Width: the GP1(06h) range X1..X2 (video cycles,
+    /// clamped to the line) in dots of the GP1(08h) resolution, `((X2 - X1) / divider + 2)
+    /// & !3` (psx-spx "GP1(06h)"), 0 when X2 <= X1. Height: Y2 - Y1 of GP1(07h), clamped
+    /// to the field, doubled when GP1(08h) bits 2 and 5 (480 lines, interlace) are both set
+    /// (psx-spx "GP1(07h)", "GP1(08h)").
     pub fn area(&self) -> DisplayArea {
-        let width = if self.mode & 0x40 != 0 {
-            368
+        let pal = self.mode & 0x08 != 0;
+        let interlaced = self.mode & 0x20 != 0;
+        let line = timing::cycles_per_line(pal);
+        let x1 = (self.h_range.0 as u32).min(line);
+        let x2 = (self.h_range.1 as u32).min(line);
+        let width = if x2 > x1 {
+            ((x2 - x1) / timing::dot_divider(self.mode) + 2) & !3
         } else {
-            [256, 320, 512, 640][(self.mode & 3) as usize]
+            0
         };
-        let height = if self.mode & 0x24 == 0x24 { 480 } else { 240 };
+        let lines = timing::lines_per_field(pal, interlaced, 0);
+        let y1 = (self.v_range.0 as u32).min(lines);
+        let y2 = (self.v_range.1 as u32).min(lines);
+        let mut height = y2.saturating_sub(y1);
+        if self.mode & 0x24 == 0x24 {
+            height *= 2;
+        }
         DisplayArea {
             x: self.start_x,
             y: self.start_y,
-            width,
-            height,
+            width: width as u16,
+            height: height as u16,
             color_24bit: self.mode & 0x10 != 0,
         }
     }

@@ -11,6 +11,7 @@ extern crate alloc;
 pub mod color;
 pub mod command_stream;
 mod display;
+mod frame;
 mod gp0;
 pub mod ordering_table;
 pub mod primitive;
@@ -24,9 +25,10 @@ use alloc::boxed::Box;
 use alloc::vec;
 
 pub use display::{DisplayArea, DisplayState};
-pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
+pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 use state::DrawState;
 use texture::ClutCache;
+pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 
 /// VRAM width in halfwords.
 pub const VRAM_WIDTH: usize = 1024;
@@ -181,7 +183,8 @@ impl Gpu {
         &self.display
     }
 
-    /// The display area the current GP1 state selects (gpu.md §9).
+    /// The display area the current GP1 state selects (gpu.md §9): position, size in
+    /// pixels from the display ranges, colour depth ([`DisplayState::area`]).
     pub fn display_area(&self) -> DisplayArea {
         self.display.area()
     }

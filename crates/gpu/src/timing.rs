@@ -407,3 +407,47 @@ impl Timing {
         t.cpu_cycles_for(video)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn display(mode: u8) -> DisplayState {
+        DisplayState {
+            mode,
+            ..DisplayState::default()
+        }
+    }
+
+    #[test]
+    fn dots_per_line_are_the_published_figures_rounded_down() {
+        // psx-spx "GPU Timings" dots per scanline, fractions dropped (its note: the timer
+        // ignores the fraction; it names 425.75 (PAL 320) as rounded up, which the model
+        // does not do: see docs/gpu.md "Video timing").
+        let cases = [
+            (0x00, 341, 340),
+            (0x01, 426, 425),
+            (0x40, 487, 486),
+            (0x02, 682, 681),
+            (0x03, 853, 851),
+        ];
+        for (mode, ntsc, pal) in cases {
+            for (pal_bit, expected, line) in [(0, ntsc, 3413u64), (0x08, pal, 3406)] {
+                let d = display(mode | pal_bit);
+                let mut t = Timing::new(VideoStandard::Ntsc);
+                for l in 0..5u32 {
+                    let e = t.advance(line, &d);
+                    assert_eq!(e.dots, expected, "mode {mode:#x} pal {pal_bit} line {l}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn clock_ratios_are_reduced_exactly() {
+        assert_eq!(VideoStandard::Ntsc.clock_ratio(), (715_909, 451_584));
+        assert_eq!(VideoStandard::Pal.clock_ratio(), (709_379, 451_584));
+        // 451584 * 75 = 33868800; 715909 * 75 = 53693175.
+        assert_eq!(451_584 * 75, CPU_CLOCK_HZ as u64);
+    }
+}

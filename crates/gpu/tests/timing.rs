@@ -87,7 +87,10 @@ fn field_rates_match_the_published_clocks_and_line_counts() {
         );
         // psx-spx's refresh table implies 3412.5 / 3405 cycles per line, its horizontal
         // timing table 3413 / 3406: the two differ by at most 0.03%.
-        assert!(((model - listed) / listed).abs() < 3.5e-4, "{model} vs {listed}");
+        assert!(
+            ((model - listed) / listed).abs() < 3.5e-4,
+            "{model} vs {listed}"
+        );
     }
 }
 
@@ -136,7 +139,10 @@ fn vblank_starts_and_ends_once_per_field() {
                 last_was_start = true;
             }
             if e.vblank_end {
-                assert!(last_was_start || ends == 0 && starts == 0, "two ends in a row");
+                assert!(
+                    last_was_start || ends == 0 && starts == 0,
+                    "two ends in a row"
+                );
                 ends += 1;
                 last_was_start = false;
             }
@@ -297,7 +303,16 @@ fn no_drift_over_a_million_frames() {
 
 #[test]
 fn next_event_is_exact_across_modes() {
-    for mode in [0u32, 1, 2, 3, 0x40, PAL, INTERLACE | LINES480, PAL | INTERLACE | 3] {
+    for mode in [
+        0u32,
+        1,
+        2,
+        3,
+        0x40,
+        PAL,
+        INTERLACE | LINES480,
+        PAL | INTERLACE | 3,
+    ] {
         for standard in [VideoStandard::Ntsc, VideoStandard::Pal] {
             let mut g = gpu(standard, mode);
             for c in chunks(mode as u64 + 3, 9000).take(300) {
