@@ -141,7 +141,11 @@ impl DisplayArea {
                 let rgb = if self.color_24bit {
                     let byte = |k: usize| {
                         let h = halfword(vram, x0 + k / 2, y);
-                        if k % 2 == 0 { h as u8 } else { (h >> 8) as u8 }
+                        if k.is_multiple_of(2) {
+                            h as u8
+                        } else {
+                            (h >> 8) as u8
+                        }
                     };
                     [byte(3 * col), byte(3 * col + 1), byte(3 * col + 2)]
                 } else {

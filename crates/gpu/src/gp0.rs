@@ -3,7 +3,7 @@
 //! (gpu.md §2, §8).
 
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
-use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
+use crate::rasterizer::{Rows, draw_line_rows, draw_rectangle_rows, draw_triangle_rows};
 use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
@@ -152,7 +152,10 @@ impl Gpu {
         let cmd = p[0];
         match cmd >> 24 {
             0x01 => self.clut.invalidate(),
-            0x02 => transfer::fill(&mut self.vram, cmd, p[1], p[2]),
+            0x02 => {
+                let rows = self.draw_rows();
+                transfer::fill(&mut self.vram, cmd, p[1], p[2], rows);
+            }
             0x1F => self.irq = true,
             0x20..=0x3F => self.polygon(p),
             0x40..=0x5F => self.line(p),
@@ -192,6 +195,18 @@ impl Gpu {
                 self.draw.mask.check = cmd & 2 != 0;
             }
             _ => {}
+        }
+    }
+
+    /// The lines drawing may write: in 480i (GP1(08h) bits 2 and 5) with GP0(E1h) bit 10
+    /// clear, not those of the field being displayed, whose VRAM lines have bit 0 equal to
+    /// that of the display start line plus the field (docs/hardware/gpu.md §8; psx-spx
+    /// "GP1(08h)", "GPU Status Register" bit 31).
+    fn draw_rows(&self) -> Rows {
+        if self.display.mode & 0x24 == 0x24 && !self.draw.mode.draw_to_display {
+            Rows::SkipParity(self.displayed_line_parity() as u8)
+        } else {
+            Rows::All
         }
     }
 
@@ -247,6 +262,7 @@ impl Gpu {
         }
         let textured = textured && self.textures_enabled();
         let texture = textured.then(|| self.texture(clut_attr, raw));
+        let rows = self.draw_rows();
         let tri = Triangle {
             vertices: [verts[0], verts[1], verts[2]],
             gouraud,
@@ -254,13 +270,13 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither && dither_applies(gouraud, textured, raw),
         };
-        draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         if quad {
             let second = Triangle {
                 vertices: [verts[1], verts[2], verts[3]],
                 ..tri
             };
-            draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &second);
+            draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &second, rows);
         }
     }
 
@@ -294,7 +310,8 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither,
         };
-        draw_line(&mut self.vram, &self.draw, &line);
+        let rows = self.draw_rows();
+        draw_line_rows(&mut self.vram, &self.draw, &line, rows);
         if polyline {
             self.gp0.mode = Mode::Polyline(Polyline {
                 line,
@@ -319,7 +336,8 @@ impl Gpu {
         next.color = p.pending_color.unwrap_or(last.color);
         p.line.vertices = [last, next];
         p.pending_color = None;
-        draw_line(&mut self.vram, &self.draw, &p.line);
+        let rows = self.draw_rows();
+        draw_line_rows(&mut self.vram, &self.draw, &p.line, rows);
         self.gp0.mode = Mode::Polyline(p);
     }
 
@@ -356,6 +374,7 @@ impl Gpu {
             flip_x: self.draw.mode.flip_x,
             flip_y: self.draw.mode.flip_y,
         };
-        draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        let rows = self.draw_rows();
+        draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
     }
 }
