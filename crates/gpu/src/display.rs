@@ -56,9 +56,9 @@ impl Default for DisplayState {
 impl DisplayState {
     /// The displayed VRAM rectangle. Width: the GP1(06h) range X1..X2 (video cycles,
     /// clamped to the line) in dots of the GP1(08h) resolution, `((X2 - X1) / divider + 2)
-    /// & !3` (psx-spx "GP1(06h)"), 0 when X2 <= X1. Height: Y2 - Y1 of GP1(07h), clamped
+    /// & !3` (docs/hardware/timing.md §5), 0 when X2 <= X1. Height: Y2 - Y1 of GP1(07h), clamped
     /// to the field, doubled when GP1(08h) bits 2 and 5 (480 lines, interlace) are both set
-    /// (psx-spx "GP1(07h)", "GP1(08h)").
+    /// (docs/hardware/timing.md §6, §7).
     pub fn area(&self) -> DisplayArea {
         let pal = self.mode & 0x08 != 0;
         let interlaced = self.mode & 0x20 != 0;
@@ -204,7 +204,7 @@ impl Gpu {
     }
 
     /// GPUSTAT.13: 1 when GP1(08h) bit 5 (interlace) is clear, else the current field
-    /// (psx-spx "GPU Status Register"). Which field value the console reports first is not
+    /// (docs/hardware/timing.md §7). Which field value the console reports first is not
     /// recorded; the model's field 0 (the one showing the display start line) reads 0.
     pub fn interlace_field_bit(&self) -> bool {
         if self.display.mode & 0x20 == 0 {
@@ -215,7 +215,7 @@ impl Gpu {
     }
 
     /// GPUSTAT.31: 0 during vblank; otherwise bit 0 of the VRAM line being displayed, which
-    /// changes every scanline in 240-line modes and every field in 480i (psx-spx "GPU Status
+    /// changes every scanline in 240-line modes and every field in 480i (docs/hardware/timing.md §7; psx-spx "GPU Status
     /// Register": "0=Even or Vblank, 1=Odd").
     pub fn line_parity_bit(&self) -> bool {
         if self.timing.in_vblank(&self.display) {

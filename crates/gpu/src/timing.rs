@@ -1,6 +1,6 @@
 //! Video timing: the GPU (video) clock against the CPU clock, scanlines and fields, the dot
-//! clock, hblank and vblank (psx-spx "GPU Timings", "GPU Display Control Commands", "GPU
-//! Status Register", "Timers"; `docs/gpu.md` "Video timing" lists the figures and choices).
+//! clock, hblank and vblank (docs/hardware/timing.md §1-§7; `docs/gpu.md` "Video timing"
+//! lists the figures and choices).
 //!
 //! Time inside the GPU is counted in video clock cycles. The CPU-to-video ratio is kept as an
 //! exact fraction with an integer remainder, so any split of a run into calls gives the same
@@ -8,16 +8,17 @@
 
 use crate::display::DisplayState;
 
-/// CPU clock in Hz: 44100 * 768 (psx-spx "GPU Timings", Video Clock).
+/// CPU clock in Hz: 44100 * 768 (docs/hardware/timing.md §1).
 pub const CPU_CLOCK_HZ: u32 = 33_868_800;
 
-/// Console region. It selects the video clock crystal (an NTSC console has no PAL crystal
-/// and the reverse, psx-spx "Nominal Video Clock") and the power-on display standard;
-/// GP1(08h) bit 3 then switches the scanline timing between NTSC and PAL at run time.
+/// Console region. It selects the video clock (a console runs its GPU on its own region's
+/// clock whatever GP1(08h) selects, docs/hardware/timing.md §1) and the power-on display
+/// standard; GP1(08h) bit 3 then switches the scanline timing between NTSC and PAL.
 // SERDE-DERIVE
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum VideoStandard {
-    /// NTSC console: 53.693175 MHz video clock, NTSC display mode at power-on.
+    /// NTSC console: video clock 11/7 of the CPU clock (53.2224 MHz), NTSC display mode at
+    /// power-on.
     #[default]
     Ntsc,
     /// PAL console: 53.203425 MHz video clock, PAL display mode at power-on.
@@ -25,10 +26,13 @@ pub enum VideoStandard {
 }
 
 impl VideoStandard {
-    /// The video clock in Hz (psx-spx "Nominal Video Clock").
+    /// The video clock in Hz. NTSC: CPU clock * 11/7 = 53,222,400, the ratio the NTSC
+    /// console of ps1-tests `timers` shows to 0.02% (psx-spx's nominal 53,693,175 is 0.9%
+    /// off that recording; docs/hardware/timing.md §1, §10). PAL: 53,203,425, psx-spx's
+    /// nominal PAL clock (no recording; 0.04% from 11/7).
     pub const fn video_clock_hz(self) -> u32 {
         match self {
-            VideoStandard::Ntsc => 53_693_175,
+            VideoStandard::Ntsc => 53_222_400,
             VideoStandard::Pal => 53_203_425,
         }
     }
@@ -56,8 +60,8 @@ const fn gcd(mut a: u64, mut b: u64) -> u64 {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Events {
     /// Dot clock ticks elapsed (timer 0 clock source). The dot divider restarts at each
-    /// scanline, so a line holds `cycles_per_line / divider` dots, rounded down (psx-spx
-    /// "GPU Timings", Horizontal Timings).
+    /// scanline, so a line holds `cycles_per_line / divider` dots, rounded down
+    /// (docs/hardware/timing.md §4).
     pub dots: u32,
     /// Hblank starts (timer 1 clock source).
     pub hblanks: u32,
@@ -99,14 +103,13 @@ impl Events {
     }
 }
 
-/// Video cycles per scanline: 3413 NTSC, 3406 PAL (psx-spx "GPU Timings", Horizontal
-/// Timings).
+/// Video cycles per scanline: 3413 NTSC, 3406 PAL (docs/hardware/timing.md §2).
 pub const fn cycles_per_line(pal: bool) -> u32 {
     if pal { 3406 } else { 3413 }
 }
 
 /// Scanlines of one field. Progressive: 263 NTSC, 314 PAL. Interlaced: fields of 262.5 and
-/// 312.5 lines on average (psx-spx "Vertical Video Timings"), modelled as whole lines with
+/// 312.5 lines on average (docs/hardware/timing.md §3), modelled as whole lines with
 /// field 0 one line longer than field 1 (263/262, 313/312).
 pub const fn lines_per_field(pal: bool, interlaced: bool, field: u8) -> u32 {
     match (pal, interlaced) {
@@ -118,7 +121,7 @@ pub const fn lines_per_field(pal: bool, interlaced: bool, field: u8) -> u32 {
 }
 
 /// Video cycles per dot for GP1(08h) bits 0-1 and 6: 256 -> 10, 320 -> 8, 368 -> 7,
-/// 512 -> 5, 640 -> 4 (psx-spx "GPU Timings", Dotclocks).
+/// 512 -> 5, 640 -> 4 (docs/hardware/timing.md §4).
 pub const fn dot_divider(mode: u8) -> u32 {
     if mode & 0x40 != 0 {
         7
@@ -152,9 +155,9 @@ struct Field {
 impl Field {
     /// Horizontal: visible from X1 to X2 of GP1(06h) (video cycles from the line start),
     /// both clamped to the line; the rest of the line is hblank. X1 >= X2 gives an endless
-    /// hblank (psx-spx "GPU Timings", Vertical Timings). Vertical: visible from line Y1 to
+    /// hblank (docs/hardware/timing.md §5). Vertical: visible from line Y1 to
     /// Y2 of GP1(07h); the rest is vblank. A Y2 at or past the last line is never reached,
-    /// so vblank never starts (psx-spx "GP1(07h)": no vblank IRQ for a much too large Y2).
+    /// so vblank never starts (docs/hardware/timing.md §6: no vblank IRQ for a too large Y2).
     fn new(display: &DisplayState, field: u8) -> Self {
         let pal = display.mode & 0x08 != 0;
         let interlaced = display.mode & 0x20 != 0;
@@ -445,9 +448,9 @@ mod tests {
 
     #[test]
     fn clock_ratios_are_reduced_exactly() {
-        assert_eq!(VideoStandard::Ntsc.clock_ratio(), (715_909, 451_584));
+        assert_eq!(VideoStandard::Ntsc.clock_ratio(), (11, 7));
         assert_eq!(VideoStandard::Pal.clock_ratio(), (709_379, 451_584));
-        // 451584 * 75 = 33868800; 715909 * 75 = 53693175.
+        // 451584 * 75 = 33868800; 709379 * 75 = 53203425.
         assert_eq!(451_584 * 75, CPU_CLOCK_HZ as u64);
     }
 }

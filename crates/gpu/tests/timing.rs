@@ -52,21 +52,25 @@ fn published_rate(clock: f64, pal_mode: bool, interlaced: bool) -> f64 {
 }
 
 #[test]
-fn field_rates_match_the_published_clocks_and_line_counts() {
-    // (console, PAL mode, interlaced, psx-spx "Vertical Refresh Rates" figure)
+fn field_rates_match_the_clocks_and_line_counts() {
+    // (console, PAL mode, interlaced, published figure for the same clock, its source)
+    // The NTSC console runs at CPU * 11/7 (ps1-tests timers, docs/hardware/timing.md §10),
+    // the rate psx-spx's nocash section uses ("ca. 59.29", "ca. 49.76"); the PAL console at
+    // 53,203,425 Hz, the clock of psx-spx's "Vertical Refresh Rates" table, whose figures
+    // assume 3412.5 / 3405 cycles a line and so sit up to 0.03% above the model's.
     let cases = [
-        (VideoStandard::Ntsc, false, false, 59.826),
-        (VideoStandard::Ntsc, false, true, 59.940),
-        (VideoStandard::Pal, true, false, 49.761),
-        (VideoStandard::Pal, true, true, 50.000),
-        (VideoStandard::Pal, false, false, 59.280),
-        (VideoStandard::Pal, false, true, 59.393),
-        (VideoStandard::Ntsc, true, false, 50.219),
-        (VideoStandard::Ntsc, true, true, 50.460),
+        (VideoStandard::Ntsc, false, false, Some((59.29, 1e-4))),
+        (VideoStandard::Ntsc, false, true, None),
+        (VideoStandard::Ntsc, true, false, Some((49.76, 1e-4))),
+        (VideoStandard::Ntsc, true, true, None),
+        (VideoStandard::Pal, true, false, Some((49.761, 3.5e-4))),
+        (VideoStandard::Pal, true, true, Some((50.000, 3.5e-4))),
+        (VideoStandard::Pal, false, false, Some((59.280, 3.5e-4))),
+        (VideoStandard::Pal, false, true, Some((59.393, 3.5e-4))),
     ];
     for (standard, pal, interlaced, listed) in cases {
         let clock = match standard {
-            VideoStandard::Ntsc => 53_693_175.0,
+            VideoStandard::Ntsc => 33_868_800.0 * 11.0 / 7.0,
             VideoStandard::Pal => 53_203_425.0,
         };
         let mode = if pal { PAL } else { 0 } | if interlaced { INTERLACE | LINES480 } else { 0 };
@@ -76,7 +80,7 @@ fn field_rates_match_the_published_clocks_and_line_counts() {
         let model = fields as f64 * CPU_CLOCK_HZ as f64 / cycles as f64;
         let expected = published_rate(clock, pal, interlaced);
         eprintln!(
-            "{standard:?} console, {} {}: model {model:.4} Hz, clock/(cycles*lines) {expected:.4} Hz, psx-spx table {listed:.3} Hz",
+            "{standard:?} console, {} {}: model {model:.4} Hz, clock/(cycles*lines) {expected:.4} Hz",
             if pal { "PAL" } else { "NTSC" },
             if interlaced { "480i" } else { "240p" }
         );
@@ -85,12 +89,12 @@ fn field_rates_match_the_published_clocks_and_line_counts() {
             ((model - expected) / expected).abs() < 1e-6,
             "{model} vs {expected}"
         );
-        // psx-spx's refresh table implies 3412.5 / 3405 cycles per line, its horizontal
-        // timing table 3413 / 3406: the two differ by at most 0.03%.
-        assert!(
-            ((model - listed) / listed).abs() < 3.5e-4,
-            "{model} vs {listed}"
-        );
+        if let Some((figure, tolerance)) = listed {
+            assert!(
+                ((model - figure) / figure).abs() < tolerance,
+                "{model} vs {figure}"
+            );
+        }
     }
 }
 
@@ -226,13 +230,13 @@ fn field_alternates_in_480i_and_gpustat_follows() {
 
 #[test]
 fn timer_inputs_match_the_console_log() {
-    // ps1-tests timers/psx.log, NTSC mode 320x240 on a console whose dot counts show a PAL
-    // video clock (982.6 dots in 5011 CPU cycles needs ~53.2 MHz; 53.69 MHz gives ~991):
+    // ps1-tests timers/psx.log, NTSC console, 320x240 (982.6 dots in 5011 CPU cycles needs a
+    // ~53.2 MHz video clock; 53.69 MHz would give ~991):
     // "Dot clock, 1000 cycles delay: 198/199", "5000 cycles delay: 982/983" (the delay loop
     // measures 1011 / 5011 system clocks, the system-clock rows), "Hblank, 1000 cycles: 0/1",
     // "5000 cycles: 2/3". The dot divider restarts every line (psx-spx: fractions of a
     // dot per line are dropped); a free-running divider would give ~984 dots in 5011.
-    let mut g = gpu(VideoStandard::Pal, 0x01);
+    let mut g = gpu(VideoStandard::Ntsc, 0x01);
     let mut a_hist = std::collections::BTreeMap::new();
     let mut b_hist = std::collections::BTreeMap::new();
     for phase in 0..3000 {
@@ -243,15 +247,23 @@ fn timer_inputs_match_the_console_log() {
         *b_hist.entry(b.dots).or_insert(0) += 1;
         assert!(a.hblanks <= 1 && (2..=3).contains(&b.hblanks));
     }
-    // 5011 cycles: only 982 and 983, as logged. 1011 cycles: the log's ten samples are 198
-    // (6) and 199 (4), mean 198.4; the model also gives 197 in the few windows that lose a
-    // dot at a line end (about 1 in 20), keeping the mean near the log's.
-    assert_eq!(b_hist.keys().copied().collect::<Vec<u32>>(), [982, 983]);
-    assert!(a_hist.keys().all(|d| (197..=199).contains(d)));
-    let n: u32 = a_hist.values().sum();
-    let mean = a_hist.iter().map(|(d, c)| (d * c) as f64).sum::<f64>() / n as f64;
-    assert!((198.1..=198.6).contains(&mean), "{mean}");
+    // The log's ten samples: 1011 cycles -> 198 (6x), 199 (4x), mean 198.4; 5011 cycles ->
+    // 982 (4x), 983 (6x), mean 982.6. The model gives those values in most windows, plus one
+    // more (197 / 984) in the few windows whose line crossings fall unusually; the means stay
+    // within 0.3 dot of the log's.
+    let stats = |h: &std::collections::BTreeMap<u32, u32>| {
+        let n: u32 = h.values().sum();
+        let mean = h.iter().map(|(d, c)| (d * c) as f64).sum::<f64>() / n as f64;
+        (n, mean)
+    };
+    let (n, mean) = stats(&a_hist);
+    assert!(a_hist.keys().all(|d| (197..=199).contains(d)), "{a_hist:?}");
+    assert!((198.1..=198.7).contains(&mean), "{mean}");
     assert!(a_hist[&197] * 10 < n);
+    let (n, mean) = stats(&b_hist);
+    assert!(b_hist.keys().all(|d| (982..=984).contains(d)), "{b_hist:?}");
+    assert!((982.3..=982.9).contains(&mean), "{mean}");
+    assert!(b_hist[&984] * 10 < n);
 }
 
 /// A deterministic sequence of odd chunk sizes in 1..=`max`.
@@ -269,7 +281,7 @@ fn chunks(seed: u64, max: u64) -> impl Iterator<Item = u32> {
 fn no_drift_over_a_million_frames() {
     // NTSC 320x240, default ranges X 0x200..0xC00, Y 0x10..0x100.
     let mut g = gpu(VideoStandard::Ntsc, 0x01);
-    let (num, den) = (53_693_175u128, CPU_CLOCK_HZ as u128);
+    let (num, den) = (53_222_400u128, CPU_CLOCK_HZ as u128);
     let frame = 3413u128 * 263;
     let target_frames = 1_000_000u128;
     let mut cpu = 0u128;
