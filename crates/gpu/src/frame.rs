@@ -5,7 +5,6 @@ use crate::display::DisplayArea;
 use crate::{Gpu, VRAM_WIDTH};
 
 /// Byte layout of a decoded frame.
-// SERDE-DERIVE
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum PixelFormat {
     /// R, G, B: 3 bytes per pixel.
@@ -26,7 +25,6 @@ impl PixelFormat {
 }
 
 /// How a 5-bit channel of a 15-bit pixel becomes 8 bits.
-// SERDE-DERIVE
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ChannelExpand {
     /// `c << 3 | c >> 2`: 0 maps to 0 and 31 to 255.
@@ -53,7 +51,6 @@ impl ChannelExpand {
 }
 
 /// Width and height of a decoded frame, in pixels.
-// SERDE-DERIVE
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FrameSize {
     /// Pixels per line.
