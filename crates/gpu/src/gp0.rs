@@ -4,7 +4,7 @@
 
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
-use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
+use crate::rasterizer::{Rows, draw_line_rows, draw_rectangle_rows, draw_triangle_rows};
 use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
@@ -184,7 +184,8 @@ impl Gpu {
         match cmd >> 24 {
             0x01 => self.clut.invalidate(),
             0x02 => {
-                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2]);
+                let rows = self.draw_rows();
+                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2], rows);
                 return Cost::fill(w, h);
             }
             0x1F => {
@@ -236,6 +237,18 @@ impl Gpu {
             _ => {}
         }
         0
+    }
+
+    /// The lines drawing may write: in 480i (GP1(08h) bits 2 and 5) with GP0(E1h) bit 10
+    /// clear, not those of the field being displayed, whose VRAM lines have bit 0 equal to
+    /// that of the display start line plus the field (docs/hardware/gpu.md §8; psx-spx
+    /// "GP1(08h)", "GPU Status Register" bit 31).
+    fn draw_rows(&self) -> Rows {
+        if self.display.mode & 0x24 == 0x24 && !self.draw.mode.draw_to_display {
+            Rows::SkipParity(self.displayed_line_parity() as u8)
+        } else {
+            Rows::All
+        }
     }
 
     /// A vertex from a position word plus the drawing offset (gpu.md §2).
@@ -292,6 +305,7 @@ impl Gpu {
         let texture = textured.then(|| self.texture(clut_attr, raw));
         let clut_units = texture.map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let read_back = semi || self.draw.mask.check;
+        let rows = self.draw_rows();
         let tri = Triangle {
             vertices: [verts[0], verts[1], verts[2]],
             gouraud,
@@ -299,7 +313,7 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither && dither_applies(gouraud, textured, raw),
         };
-        let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
         if quad {
@@ -307,7 +321,8 @@ impl Gpu {
                 vertices: [verts[1], verts[2], verts[3]],
                 ..tri
             };
-            let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &second);
+            let drawn =
+                draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &second, rows);
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
         units
@@ -343,7 +358,8 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither,
         };
-        let drawn = draw_line(&mut self.vram, &self.draw, &line);
+        let rows = self.draw_rows();
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);
         if polyline {
             self.gp0.mode = Mode::Polyline(Polyline {
                 line,
@@ -371,7 +387,8 @@ impl Gpu {
         next.color = p.pending_color.unwrap_or(last.color);
         p.line.vertices = [last, next];
         p.pending_color = None;
-        let drawn = draw_line(&mut self.vram, &self.draw, &p.line);
+        let rows = self.draw_rows();
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, &p.line, rows);
         self.gp0.mode = Mode::Polyline(p);
         Some(Cost::line(drawn))
     }
@@ -411,7 +428,8 @@ impl Gpu {
             flip_x: self.draw.mode.flip_x,
             flip_y: self.draw.mode.flip_y,
         };
-        let drawn = draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        let rows = self.draw_rows();
+        let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
         clut_units.saturating_add(Cost::rectangle(semi || self.draw.mask.check, drawn))
     }
 }

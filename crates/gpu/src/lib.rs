@@ -13,12 +13,14 @@ pub mod command_stream;
 mod display;
 mod dma;
 mod drawing;
+mod frame;
 mod gp0;
 pub mod ordering_table;
 pub mod primitive;
 pub mod rasterizer;
 pub mod state;
 pub mod texture;
+mod timing;
 mod transfer;
 
 use alloc::boxed::Box;
@@ -29,8 +31,10 @@ pub use dma::{
     DmaError, LINKED_LIST_WORD_BUDGET, LinkedListReport, ListEnd, RAM_MASK, RAM_SIZE,
     dma_clear_ordering_table,
 };
+pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 use state::DrawState;
 use texture::ClutCache;
+pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 
 /// VRAM width in halfwords.
 pub const VRAM_WIDTH: usize = 1024;
@@ -102,64 +106,64 @@ pub struct Gpu {
     irq_event: bool,
     texture_disable_allowed: bool,
     drawing: drawing::Drawing,
-    /// CPU-to-GPU clock conversion remainder (GPU cycles * 33 868 800).
-    clock_remainder: u64,
+    timing: timing::Timing,
 }
-
-/// What happened during one [`Gpu::run`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Events {
-    /// GP0(1Fh) raised the GPU IRQ since the previous run.
-    pub gpu_irq: bool,
-    /// The GPU went from busy (drawing, or commands waiting in the FIFO) to idle.
-    pub drawing_done: bool,
-}
-
-/// CPU clock in Hz (44100 * 768).
-const CPU_HZ: u64 = 33_868_800;
-/// NTSC GPU clock in Hz.
-const GPU_HZ: u64 = 53_693_175;
 
 impl Gpu {
-    /// A GPU in its reset state with all-zero VRAM.
+    /// An NTSC GPU in its reset state with all-zero VRAM.
     pub fn new() -> Self {
+        Self::with_standard(VideoStandard::Ntsc)
+    }
+
+    /// A GPU of a console of region `standard` at power-on: reset state, all-zero VRAM, the
+    /// display mode of that standard (GP1(08h) bit 3 set for PAL) and its video clock.
+    pub fn with_standard(standard: VideoStandard) -> Self {
+        let mut display = DisplayState::default();
+        if standard == VideoStandard::Pal {
+            display.mode |= 0x08;
+        }
         Self {
             vram: Vram::new(),
             draw: DrawState::default(),
             clut: ClutCache::default(),
             gp0: gp0::Gp0State::default(),
             read: transfer::ReadTransfer::default(),
-            display: DisplayState::default(),
+            display,
             gpuread_latch: 0,
             irq: false,
             irq_event: false,
             texture_disable_allowed: false,
             drawing: drawing::Drawing::default(),
-            clock_remainder: 0,
+            timing: timing::Timing::new(standard),
         }
     }
 
-    /// Advance time by `cpu_cycles` CPU cycles and report what happened.
+    /// The console region this GPU was built for (its video clock).
+    pub fn video_standard(&self) -> VideoStandard {
+        self.timing.standard()
+    }
+
+    /// Advance time by `cpu_cycles` CPU cycles (33.8688 MHz) and report what happened: dot
+    /// clocks and hblanks for the timers, vblank edges for IRQ0 (`docs/gpu.md`, "Video
+    /// timing"). Any split of a span of time into calls reports the same totals.
     pub fn run(&mut self, cpu_cycles: u32) -> Events {
-        let total = cpu_cycles as u64 * GPU_HZ + self.clock_remainder;
-        let gpu_cycles = u32::try_from(total / CPU_HZ).unwrap_or(u32::MAX);
-        self.clock_remainder = total % CPU_HZ;
-        let (gpu_irq, drawing_done) = self.advance_drawing(gpu_cycles);
-        Events {
-            gpu_irq,
-            drawing_done,
-        }
+        let video = self.timing.convert(cpu_cycles);
+        let mut events = self.timing.advance(video, &self.display);
+        let (gpu_irq, drawing_done) =
+            self.advance_drawing(u32::try_from(video).unwrap_or(u32::MAX));
+        events.gpu_irq = gpu_irq;
+        events.drawing_done = drawing_done;
+        events
     }
 
-    /// CPU cycles until [`Gpu::run`] would report an event (rounded up, so running exactly
-    /// this many reaches it); 0 when one awaits delivery; `u32::MAX` when none comes.
+    /// CPU cycles until [`Gpu::run`] would report an event: an hblank or vblank edge, the GPU
+    /// IRQ or the end of drawing (rounded up, so running exactly this many reaches it); 0 when
+    /// one awaits delivery; `u32::MAX` when none comes. Dot counts are not events.
     pub fn cycles_until_next_event(&self) -> u32 {
+        let video = self.timing.cycles_until_next_event(&self.display);
         match self.drawing_cycles_until_event() {
-            None => u32::MAX,
-            Some(gpu) => {
-                let need = (gpu as u64 * CPU_HZ).saturating_sub(self.clock_remainder);
-                u32::try_from(need.div_ceil(GPU_HZ)).unwrap_or(u32::MAX)
-            }
+            None => video,
+            Some(gpu) => video.min(self.timing.cpu_cycles_for(gpu as u64)),
         }
     }
 
@@ -206,7 +210,8 @@ impl Gpu {
         &self.display
     }
 
-    /// The display area the current GP1 state selects (gpu.md §9).
+    /// The display area the current GP1 state selects (gpu.md §9): position, size in
+    /// pixels from the display ranges, colour depth ([`DisplayState::area`]).
     pub fn display_area(&self) -> DisplayArea {
         self.display.area()
     }

@@ -1,6 +1,7 @@
 //! VRAM transfer commands: fill (02h), VRAM-to-VRAM copy (80h), CPU-to-VRAM (A0h) and
 //! VRAM-to-CPU (C0h) (gpu.md §8).
 
+use crate::rasterizer::Rows;
 use crate::state::MaskSettings;
 use crate::{VRAM_WIDTH, Vram};
 
@@ -54,9 +55,10 @@ fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSetti
 }
 
 /// GP0(02h) fill (gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
-/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Returns the
-/// filled width and height.
-pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) -> (u32, u32) {
+/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Lines
+/// `rows` drops are skipped (480i, docs/hardware/gpu.md §8). Returns the filled width and
+/// height.
+pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32, rows: Rows) -> (u32, u32) {
     let x = (pos & 0x3F0) as usize;
     let y = ((pos >> 16) & 0x1FF) as usize;
     let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
@@ -66,6 +68,9 @@ pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) -> (u32, u32) {
         | (((color >> 16) & 0xFF) >> 3) << 10;
     let pixels = vram.as_mut_slice();
     for row in 0..h {
+        if !rows.keeps(((y + row) & 511) as i32) {
+            continue;
+        }
         let base = ((y + row) & 511) * VRAM_WIDTH;
         for col in 0..w {
             if let Some(p) = pixels.get_mut(base + ((x + col) & 1023)) {

@@ -162,15 +162,20 @@ fn gpustat_bits() {
     assert_eq!(g.gpustat() >> 29 & 3, 2);
 }
 
-/// Display area width and height from GP1(08h), start from GP1(05h).
+/// Display area width and height from GP1(08h) and the reset display ranges (2560 video
+/// cycles, 240 lines), start from GP1(05h). psx-spx "GP1(06h)": pixels = (cycles / divider
+/// + 2) & !3, so 368-wide mode shows 2560 / 7 = 365 -> 364 pixels of the reset range.
 #[test]
 fn display_area_modes() {
     let mut g = Gpu::new();
-    for (mode, w) in [(0, 256), (1, 320), (2, 512), (3, 640), (0x40, 368)] {
+    for (mode, w) in [(0, 256), (1, 320), (2, 512), (3, 640), (0x40, 364)] {
         g.gp1(0x0800_0000 | mode);
         assert_eq!(g.display_area().width, w);
         assert_eq!(g.display_area().height, 240);
     }
+    g.gp1(0x0600_0000 | (0x200 + 368 * 7) << 12 | 0x200);
+    assert_eq!(g.display_area().width, 368);
+    g.gp1(0x0600_0000 | (0x200 + 2560) << 12 | 0x200);
     g.gp1(0x0800_0024 | 3);
     assert_eq!(
         (g.display_area().width, g.display_area().height),

@@ -13,6 +13,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
+    filter: super::Rows,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -28,7 +29,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     }
     let mut row_count = DrawCount::default();
     row_count.span(x_start, x_end);
-    let rows = (y_end - y_start) as u32;
+    let rows = filter.count(y_start, y_end);
     let drawn = DrawCount {
         rows,
         pixels: row_count.pixels * rows,
@@ -40,11 +41,11 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     let dv: u8 = if rect.flip_y { 255 } else { 1 };
     // Texel at the first drawn column: u0 + (x_start - x0) steps.
     let u_start = o.u.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
-    for y in y_start..y_end {
+    filter.each(y_start, y_end, |y| {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
             super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
-            continue;
+            return;
         }
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));
         let mut u = u_start;
@@ -60,6 +61,6 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             );
             u = u.wrapping_add(du);
         }
-    }
+    });
     drawn
 }
