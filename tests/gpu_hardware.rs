@@ -85,3 +85,8 @@ fn rectangles() {
 fn texture_overflow() {
     check("texture-overflow");
 }
+
+#[test]
+fn texture_flip() {
+    check("texture-flip");
+}
