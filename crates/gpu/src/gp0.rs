@@ -175,13 +175,15 @@ impl Gpu {
                 w.offset_x = (cmd >> 10 & 0x1F) as u8;
                 w.offset_y = (cmd >> 15 & 0x1F) as u8;
             }
+            // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
+            // "Modelled GPU version").
             0xE3 => {
                 self.draw.area.left = (cmd & 0x3FF) as u16;
-                self.draw.area.top = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.top = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE4 => {
                 self.draw.area.right = (cmd & 0x3FF) as u16;
-                self.draw.area.bottom = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE5 => {
                 self.draw.offset_x = sext11(cmd & 0x7FF) as i16;

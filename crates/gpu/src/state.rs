@@ -63,16 +63,18 @@ pub struct TextureWindow {
     pub offset_y: u8,
 }
 
-/// GP0(E3h)/(E4h) drawing area, inclusive bounds in VRAM coordinates (gpu.md §2).
+/// GP0(E3h)/(E4h) drawing area, inclusive bounds (gpu.md §2). X is 10 bits; Y is 10 bits
+/// (0-1023) on the modelled v2 GPU, compared with the unwrapped pixel Y, while rows are written
+/// at `y & 511`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DrawingArea {
-    /// Leftmost drawable column.
+    /// Leftmost drawable column (0-1023).
     pub left: u16,
-    /// Topmost drawable line.
+    /// Topmost drawable line (0-1023).
     pub top: u16,
-    /// Rightmost drawable column (inclusive).
+    /// Rightmost drawable column, inclusive (0-1023).
     pub right: u16,
-    /// Bottom drawable line (inclusive).
+    /// Bottom drawable line, inclusive (0-1023).
     pub bottom: u16,
 }
 
