@@ -7,7 +7,7 @@ use crate::quantize::Depth;
 use crate::scene::Scene;
 use crate::tessellate::{MAX_LEVEL, PreparedFace, PreparedVertex, SplitStack, UV_FRACTION_BITS};
 use crate::vram_alloc::{Placement, VramAllocator, VramFull};
-use gpu::ordering_table::OrderingTable;
+use gpu::ordering_table::{OrderingTable, OtError};
 use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
 use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
@@ -77,6 +77,8 @@ pub enum PipelineError {
     Vram(VramFull),
     /// The scene is inconsistent.
     Scene(String),
+    /// The ordering table cannot be built.
+    OrderingTable(OtError),
 }
 
 impl fmt::Display for PipelineError {
@@ -84,6 +86,7 @@ impl fmt::Display for PipelineError {
         match self {
             PipelineError::Vram(e) => write!(f, "{e}"),
             PipelineError::Scene(e) => write!(f, "{e}"),
+            PipelineError::OrderingTable(e) => write!(f, "{e}"),
         }
     }
 }
@@ -552,7 +555,8 @@ impl Renderer {
         let mut geometry = Geometry::new();
         geometry.set_divide_mode(options.divide_mode);
         Ok(Renderer {
-            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
+            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
+                .map_err(PipelineError::OrderingTable)?,
             scratch: Vec::with_capacity(capacity),
             stack: SplitStack::default(),
             capacity,
