@@ -36,36 +36,43 @@ pub const VRAM_LEN: usize = VRAM_WIDTH * VRAM_HEIGHT;
 /// 1024x512 halfwords of 1555 MBGR pixels, row-major (`y * 1024 + x`) (gpu.md §1).
 #[derive(Clone, PartialEq, Eq)]
 pub struct Vram {
-    pixels: Box<[u16]>,
+    pixels: Box<[u16; VRAM_LEN]>,
 }
 
 impl Vram {
-    /// All-zero VRAM.
+    /// All-zero VRAM, allocated on the heap directly (no 1 MiB stack temporary).
     pub fn new() -> Self {
-        Self {
-            pixels: vec![0u16; VRAM_LEN].into_boxed_slice(),
-        }
+        let pixels = match vec![0u16; VRAM_LEN].into_boxed_slice().try_into() {
+            Ok(pixels) => pixels,
+            // A slice of VRAM_LEN elements always converts; this arm is never taken.
+            Err(_) => Box::new([0u16; VRAM_LEN]),
+        };
+        Self { pixels }
     }
     /// The whole VRAM, `VRAM_WIDTH * VRAM_HEIGHT` halfwords.
     pub fn as_slice(&self) -> &[u16] {
-        &self.pixels
+        &self.pixels[..]
     }
     /// The whole VRAM, mutable.
     pub fn as_mut_slice(&mut self) -> &mut [u16] {
+        &mut self.pixels[..]
+    }
+    /// The whole VRAM as a fixed-size array: indices masked with `VRAM_LEN - 1` need no
+    /// bounds check.
+    pub fn as_array(&self) -> &[u16; VRAM_LEN] {
+        &self.pixels
+    }
+    /// The whole VRAM as a fixed-size array, mutable.
+    pub fn as_array_mut(&mut self) -> &mut [u16; VRAM_LEN] {
         &mut self.pixels
     }
     /// The pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn pixel(&self, x: usize, y: usize) -> u16 {
-        self.pixels
-            .get((y & 511) * VRAM_WIDTH + (x & 1023))
-            .copied()
-            .unwrap_or(0)
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)]
     }
     /// Set the pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn set_pixel(&mut self, x: usize, y: usize, value: u16) {
-        if let Some(p) = self.pixels.get_mut((y & 511) * VRAM_WIDTH + (x & 1023)) {
-            *p = value;
-        }
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)] = value;
     }
 }
 

@@ -2,7 +2,7 @@
 //! VRAM-to-CPU (C0h) (gpu.md §8).
 
 use crate::state::MaskSettings;
-use crate::{VRAM_WIDTH, Vram};
+use crate::{VRAM_LEN, VRAM_WIDTH, Vram};
 
 /// A transfer rectangle as the copy commands mask it (gpu.md §8): x & 3FFh, y & 1FFh,
 /// w = ((w-1) & 3FFh) + 1, h = ((h-1) & 1FFh) + 1, so a size of 0 means the maximum.
@@ -63,13 +63,11 @@ pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) {
     let c = ((color & 0xFF) >> 3)
         | (((color >> 8) & 0xFF) >> 3) << 5
         | (((color >> 16) & 0xFF) >> 3) << 10;
-    let pixels = vram.as_mut_slice();
+    let pixels = vram.as_array_mut();
     for row in 0..h {
         let base = ((y + row) & 511) * VRAM_WIDTH;
         for col in 0..w {
-            if let Some(p) = pixels.get_mut(base + ((x + col) & 1023)) {
-                *p = c as u16;
-            }
+            pixels[(base + ((x + col) & 1023)) & (VRAM_LEN - 1)] = c as u16;
         }
     }
 }

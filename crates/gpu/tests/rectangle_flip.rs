@@ -81,7 +81,7 @@ fn x_flip_every_depth_u0_window_and_clip() {
                         g.gp0_words(&[0x0200_0000, ROW << 16, 1 << 16 | 128]); // clear the row
                         g.gp0(0xE300_0000 | (X0 + clip)); // left edge
                         g.gp0(e2);
-                        g.gp0(0xE100_0000 | (flip as u32) << 12 | depth << 7 | PAGE_X / 64);
+                        g.gp0(0xE100_0000 | (flip as u32) << 12 | depth << 7 | (PAGE_X / 64));
                         g.gp0_words(&[
                             0x6500_0000,
                             ROW << 16 | X0,
@@ -115,7 +115,7 @@ fn x_flip_every_depth_u0_window_and_clip() {
 #[test]
 fn x_flip_even_u0_starts_one_higher() {
     let mut g = textured_gpu(2);
-    g.gp0(0xE100_1000 | 2 << 7 | PAGE_X / 64);
+    g.gp0(0xE100_1000 | 2 << 7 | (PAGE_X / 64));
     g.gp0_words(&[0x6500_0000, ROW << 16, 4, 1 << 16 | 4]);
     let got: Vec<u16> = (0..4).map(|x| g.vram().pixel(x, ROW as usize)).collect();
     assert_eq!(got, [0x405, 0x404, 0x403, 0x402]);

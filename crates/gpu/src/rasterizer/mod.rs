@@ -146,10 +146,6 @@ pub(crate) const fn wrap11(v: i32) -> i32 {
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
 
-fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
-    vram.as_mut_slice().try_into().ok()
-}
-
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
     state: &DrawState,
@@ -172,9 +168,7 @@ fn env<'a>(
 /// Draw one triangle (gpu.md §3): size drop, fill rule, attribute stepping, texture,
 /// blending, dithering, mask.
 pub fn draw_triangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, tri: &Triangle) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (g, b, d, m) = (
@@ -203,9 +197,7 @@ pub fn draw_triangle_precise(
     at: &[precise::PreciseVertex; 3],
     perspective: bool,
 ) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
@@ -220,9 +212,7 @@ pub fn draw_triangle_precise(
 
 /// Draw one line segment, both endpoints included (gpu.md §4).
 pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -240,9 +230,7 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
 
 /// Draw one rectangle (gpu.md §5).
 pub fn draw_rectangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, rect: &Rectangle) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);
     let (b, m) = (rect.blend.is_some(), state.mask.check);
