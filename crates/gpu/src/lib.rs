@@ -4,7 +4,9 @@
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
 //! [`Gpu::vram`]. Commands may arrive split at any word boundary.
-#![cfg_attr(not(feature = "std"), no_std)]
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 extern crate alloc;
 
