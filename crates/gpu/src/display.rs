@@ -20,6 +20,7 @@ pub struct DisplayArea {
 
 /// State written through GP1 (gpu.md §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DisplayState {
     /// GP1(03h): display disabled.
     pub disabled: bool,

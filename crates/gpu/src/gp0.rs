@@ -13,6 +13,7 @@ const MAX_PACKET: usize = 12;
 
 /// What incoming GP0 words mean right now.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Mode {
     /// Collecting a command packet.
     #[default]
@@ -25,6 +26,7 @@ enum Mode {
 
 /// A polyline in progress (gpu.md §2, §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Polyline {
     line: Line,
     /// Gouraud: the colour word of the next vertex has been read.
@@ -33,6 +35,7 @@ struct Polyline {
 
 /// GP0 packet assembly state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Gp0State {
     buf: [u32; MAX_PACKET],
     len: usize,

@@ -17,6 +17,8 @@ mod gp0;
 pub mod ordering_table;
 pub mod primitive;
 pub mod rasterizer;
+#[cfg(feature = "serde")]
+mod serde_array;
 pub mod state;
 pub mod texture;
 mod transfer;
@@ -84,6 +86,25 @@ impl Default for Vram {
     }
 }
 
+/// VRAM is serialized as a sequence of `VRAM_LEN` halfwords, row-major.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Vram {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.pixels.iter())
+    }
+}
+
+/// VRAM is read back from a sequence of exactly `VRAM_LEN` halfwords; any other length is an
+/// error.
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Vram {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut vram = Vram::new();
+        deserializer.deserialize_seq(serde_array::Fill(vram.as_mut_slice()))?;
+        Ok(vram)
+    }
+}
+
 impl core::fmt::Debug for Vram {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("Vram").finish_non_exhaustive()
@@ -92,6 +113,7 @@ impl core::fmt::Debug for Vram {
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gpu {
     vram: Vram,
     draw: DrawState,

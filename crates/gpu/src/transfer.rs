@@ -7,6 +7,7 @@ use crate::{VRAM_LEN, VRAM_WIDTH, Vram};
 /// A transfer rectangle as the copy commands mask it (gpu.md §8): x & 3FFh, y & 1FFh,
 /// w = ((w-1) & 3FFh) + 1, h = ((h-1) & 1FFh) + 1, so a size of 0 means the maximum.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TransferRect {
     /// Left edge.
     pub x: u16,
@@ -93,6 +94,7 @@ pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) 
 /// A CPU-to-VRAM transfer in progress (GP0 A0h): pixels arrive two per word; an odd count
 /// leaves the last word's upper half unused (gpu.md §8).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WriteTransfer {
     rect: TransferRect,
     next: u32,
@@ -119,6 +121,7 @@ impl WriteTransfer {
 
 /// A VRAM-to-CPU transfer in progress (GP0 C0h), read through GPUREAD.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ReadTransfer {
     rect: TransferRect,
     next: u32,
