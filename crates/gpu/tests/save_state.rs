@@ -18,7 +18,7 @@ fn script() -> (Vec<u32>, [usize; 2]) {
     // CLUT at (0, 300): entry i = i * 0421h.
     w.extend([0xA000_0000, xy(0, 300), 1 << 16 | 16]);
     for pair in 0..8u32 {
-        w.push((2 * pair + 1) * 0x421 << 16 | (2 * pair) * 0x421);
+        w.push((((2 * pair + 1) * 0x421) << 16) | ((2 * pair) * 0x421));
     }
     // 4-bit texels 1..15 then 0 in row 0 of the page at x = 512.
     w.extend([0xA000_0000, xy(512, 0), 1 << 16 | 4]);
