@@ -42,6 +42,28 @@ pub(crate) struct Gp0State {
     mode: Mode,
 }
 
+/// GP0 input that has started but not finished: what a stream that stops here leaves
+/// behind (gpu.md §2, §8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PendingInput {
+    /// A command packet with fewer words than its command needs.
+    Packet {
+        /// The packet's first (command) word.
+        command: u32,
+        /// Words received, the command word included.
+        received: usize,
+        /// Words the command needs.
+        expected: usize,
+    },
+    /// A CPU-to-VRAM transfer (GP0 A0h) still waiting for data words.
+    Transfer {
+        /// Data words still expected (two pixels a word).
+        remaining_words: u32,
+    },
+    /// A polyline (GP0 48h-5Fh with bit 27) not yet ended by its terminator word.
+    Polyline,
+}
+
 impl Gp0State {
     /// No packet or transfer is in progress.
     pub(crate) fn idle(&self) -> bool {
@@ -148,6 +170,26 @@ impl Gpu {
                     self.execute(&packet);
                 }
             }
+        }
+    }
+
+    /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
+    /// transfer or an unterminated polyline. `None` when the next word starts a new command.
+    pub fn pending_input(&self) -> Option<PendingInput> {
+        match self.gp0.mode {
+            Mode::Write(t) => Some(PendingInput::Transfer {
+                remaining_words: t.remaining_pixels().div_ceil(2),
+            }),
+            Mode::Polyline(_) => Some(PendingInput::Polyline),
+            Mode::Command if self.gp0.len > 0 => {
+                let command = self.gp0.buf[0];
+                Some(PendingInput::Packet {
+                    command,
+                    received: self.gp0.len,
+                    expected: packet_len(command),
+                })
+            }
+            Mode::Command => None,
         }
     }
 

@@ -27,6 +27,7 @@ use alloc::boxed::Box;
 use alloc::vec;
 
 pub use display::{DisplayArea, DisplayState};
+pub use gp0::PendingInput;
 use state::DrawState;
 use texture::ClutCache;
 

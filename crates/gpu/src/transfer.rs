@@ -106,6 +106,11 @@ impl WriteTransfer {
         Self { rect, next: 0 }
     }
 
+    /// Pixels still to be written.
+    pub fn remaining_pixels(&self) -> u32 {
+        self.rect.pixels().saturating_sub(self.next)
+    }
+
     /// Take one data word; returns false when the transfer is complete.
     pub fn push(&mut self, vram: &mut Vram, word: u32, mask: MaskSettings) -> bool {
         for half in [word as u16, (word >> 16) as u16] {
