@@ -2,7 +2,7 @@
 //! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
 //! to the drawing area.
 
-use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
 use crate::state::DrawState;
@@ -14,7 +14,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
-) {
+) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
     let o = rect.origin;
@@ -25,8 +25,16 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     let y_start = y0.max(area.top as i32);
     let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
     if x_start >= x_end || y_start >= y_end {
-        return;
+        return DrawCount::default();
     }
+    let mut row_count = DrawCount::default();
+    row_count.span(x_start, x_end);
+    let rows = (y_end - y_start) as u32;
+    let drawn = DrawCount {
+        rows,
+        pixels: row_count.pixels * rows,
+        pairs: row_count.pairs * rows,
+    };
     let flat = o.color.map(|c| c as i32);
     // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
     let du: u8 = if rect.flip_x { 255 } else { 1 };
@@ -56,4 +64,5 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             u = u.wrapping_add(du);
         }
     }
+    drawn
 }
