@@ -21,6 +21,7 @@ pub struct DisplayArea {
 
 /// State written through GP1 (gpu.md §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DisplayState {
     /// GP1(03h): display disabled.
     pub disabled: bool,
@@ -137,8 +138,8 @@ impl Gpu {
     }
 
     /// GP1(10h..1Fh): latch internal register `word & 7` into GPUREAD: 2 texture window,
-    /// 3/4 drawing area corners, 5 drawing offset, 7 GPU version (2); other indices keep the
-    /// latch (psx-spx "GP1(10h) Get GPU Info").
+    /// 3/4 drawing area corners (X bits 0-9, Y bits 10-19 on the v2 GPU), 5 drawing offset,
+    /// 7 GPU version (2); other indices keep the latch (psx-spx "GP1(10h) Get GPU Info").
     fn info(&mut self, word: u32) {
         let d = &self.draw;
         self.gpuread_latch = match word & 7 {

@@ -126,6 +126,7 @@ impl Cost {
 
 /// One unit of work waiting in the FIFO: the words it occupies and its time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Queued {
     words: u32,
     cycles: u32,
@@ -133,6 +134,7 @@ struct Queued {
 
 /// Drawing-busy time and FIFO occupancy, in GPU cycles.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Drawing {
     /// GPU cycles left on the unit being executed.
     busy: u32,

@@ -5,6 +5,7 @@ use crate::display::DisplayArea;
 use crate::{Gpu, VRAM_WIDTH};
 
 /// Byte layout of a decoded frame.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum PixelFormat {
     /// R, G, B: 3 bytes per pixel.
@@ -25,6 +26,7 @@ impl PixelFormat {
 }
 
 /// How a 5-bit channel of a 15-bit pixel becomes 8 bits.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum ChannelExpand {
     /// `c << 3 | c >> 2`: 0 maps to 0 and 31 to 255.
@@ -51,6 +53,7 @@ impl ChannelExpand {
 }
 
 /// Width and height of a decoded frame, in pixels.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct FrameSize {
     /// Pixels per line.
@@ -88,8 +91,7 @@ impl core::fmt::Display for FrameError {
     }
 }
 
-#[cfg(feature = "std")]
-impl std::error::Error for FrameError {}
+impl core::error::Error for FrameError {}
 
 fn halfword(vram: &[u16], x: usize, y: usize) -> u16 {
     vram.get((y & 511) * VRAM_WIDTH + (x & 1023))

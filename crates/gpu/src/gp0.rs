@@ -14,6 +14,7 @@ const MAX_PACKET: usize = 12;
 
 /// What incoming GP0 words mean right now.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Mode {
     /// Collecting a command packet.
     #[default]
@@ -26,6 +27,7 @@ enum Mode {
 
 /// A polyline in progress (gpu.md §2, §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Polyline {
     line: Line,
     /// Gouraud: the colour word of the next vertex has been read.
@@ -34,10 +36,33 @@ struct Polyline {
 
 /// GP0 packet assembly state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Gp0State {
     buf: [u32; MAX_PACKET],
     len: usize,
     mode: Mode,
+}
+
+/// GP0 input that has started but not finished: what a stream that stops here leaves
+/// behind (gpu.md §2, §8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PendingInput {
+    /// A command packet with fewer words than its command needs.
+    Packet {
+        /// The packet's first (command) word.
+        command: u32,
+        /// Words received, the command word included.
+        received: usize,
+        /// Words the command needs.
+        expected: usize,
+    },
+    /// A CPU-to-VRAM transfer (GP0 A0h) still waiting for data words.
+    Transfer {
+        /// Data words still expected (two pixels a word).
+        remaining_words: u32,
+    },
+    /// A polyline (GP0 48h-5Fh with bit 27) not yet ended by its terminator word.
+    Polyline,
 }
 
 impl Gp0State {
@@ -178,6 +203,26 @@ impl Gpu {
         }
     }
 
+    /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
+    /// transfer or an unterminated polyline. `None` when the next word starts a new command.
+    pub fn pending_input(&self) -> Option<PendingInput> {
+        match self.gp0.mode {
+            Mode::Write(t) => Some(PendingInput::Transfer {
+                remaining_words: t.remaining_pixels().div_ceil(2),
+            }),
+            Mode::Polyline(_) => Some(PendingInput::Polyline),
+            Mode::Command if self.gp0.len > 0 => {
+                let command = self.gp0.buf[0];
+                Some(PendingInput::Packet {
+                    command,
+                    received: self.gp0.len,
+                    expected: packet_len(command),
+                })
+            }
+            Mode::Command => None,
+        }
+    }
+
     /// Execute a complete packet; returns its cost in draw units.
     fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
@@ -218,13 +263,15 @@ impl Gpu {
                 w.offset_x = (cmd >> 10 & 0x1F) as u8;
                 w.offset_y = (cmd >> 15 & 0x1F) as u8;
             }
+            // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
+            // "Modelled GPU version").
             0xE3 => {
                 self.draw.area.left = (cmd & 0x3FF) as u16;
-                self.draw.area.top = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.top = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE4 => {
                 self.draw.area.right = (cmd & 0x3FF) as u16;
-                self.draw.area.bottom = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE5 => {
                 self.draw.offset_x = sext11(cmd & 0x7FF) as i16;

@@ -4,7 +4,9 @@
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
 //! [`Gpu::vram`]. Commands may arrive split at any word boundary.
-#![cfg_attr(not(feature = "std"), no_std)]
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 extern crate alloc;
 
@@ -18,6 +20,8 @@ mod gp0;
 pub mod ordering_table;
 pub mod primitive;
 pub mod rasterizer;
+#[cfg(feature = "serde")]
+mod serde_array;
 pub mod state;
 pub mod texture;
 mod timing;
@@ -32,6 +36,7 @@ pub use dma::{
     dma_clear_ordering_table,
 };
 pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
+pub use gp0::PendingInput;
 use state::DrawState;
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
@@ -46,42 +51,68 @@ pub const VRAM_LEN: usize = VRAM_WIDTH * VRAM_HEIGHT;
 /// 1024x512 halfwords of 1555 MBGR pixels, row-major (`y * 1024 + x`) (gpu.md §1).
 #[derive(Clone, PartialEq, Eq)]
 pub struct Vram {
-    pixels: Box<[u16]>,
+    pixels: Box<[u16; VRAM_LEN]>,
 }
 
 impl Vram {
-    /// All-zero VRAM.
+    /// All-zero VRAM, allocated on the heap directly (no 1 MiB stack temporary).
     pub fn new() -> Self {
-        Self {
-            pixels: vec![0u16; VRAM_LEN].into_boxed_slice(),
-        }
+        let pixels = match vec![0u16; VRAM_LEN].into_boxed_slice().try_into() {
+            Ok(pixels) => pixels,
+            // A slice of VRAM_LEN elements always converts; this arm is never taken.
+            Err(_) => Box::new([0u16; VRAM_LEN]),
+        };
+        Self { pixels }
     }
     /// The whole VRAM, `VRAM_WIDTH * VRAM_HEIGHT` halfwords.
     pub fn as_slice(&self) -> &[u16] {
-        &self.pixels
+        &self.pixels[..]
     }
     /// The whole VRAM, mutable.
     pub fn as_mut_slice(&mut self) -> &mut [u16] {
+        &mut self.pixels[..]
+    }
+    /// The whole VRAM as a fixed-size array: indices masked with `VRAM_LEN - 1` need no
+    /// bounds check.
+    pub fn as_array(&self) -> &[u16; VRAM_LEN] {
+        &self.pixels
+    }
+    /// The whole VRAM as a fixed-size array, mutable.
+    pub fn as_array_mut(&mut self) -> &mut [u16; VRAM_LEN] {
         &mut self.pixels
     }
     /// The pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn pixel(&self, x: usize, y: usize) -> u16 {
-        self.pixels
-            .get((y & 511) * VRAM_WIDTH + (x & 1023))
-            .copied()
-            .unwrap_or(0)
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)]
     }
     /// Set the pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn set_pixel(&mut self, x: usize, y: usize, value: u16) {
-        if let Some(p) = self.pixels.get_mut((y & 511) * VRAM_WIDTH + (x & 1023)) {
-            *p = value;
-        }
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)] = value;
     }
 }
 
 impl Default for Vram {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// VRAM is serialized as a sequence of `VRAM_LEN` halfwords, row-major.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Vram {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.pixels.iter())
+    }
+}
+
+/// VRAM is read back from a sequence of exactly `VRAM_LEN` halfwords; any other length is an
+/// error.
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Vram {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut vram = Vram::new();
+        deserializer.deserialize_seq(serde_array::Fill(vram.as_mut_slice()))?;
+        Ok(vram)
     }
 }
 
@@ -93,6 +124,7 @@ impl core::fmt::Debug for Vram {
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gpu {
     vram: Vram,
     draw: DrawState,

@@ -14,6 +14,7 @@ pub const CPU_CLOCK_HZ: u32 = 33_868_800;
 /// Console region. It selects the video clock (a console runs its GPU on its own region's
 /// clock whatever GP1(08h) selects, docs/hardware/timing.md §1) and the power-on display
 /// standard; GP1(08h) bit 3 then switches the scanline timing between NTSC and PAL.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum VideoStandard {
     /// NTSC console: video clock 11/7 of the CPU clock (53.2224 MHz), NTSC display mode at
@@ -55,6 +56,7 @@ const fn gcd(mut a: u64, mut b: u64) -> u64 {
 
 /// What happened during one [`crate::Gpu::run`]: counts for the timer inputs and flags for
 /// the edges an interrupt controller or timer synchronisation needs.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Events {
     /// Dot clock ticks elapsed (timer 0 clock source). The dot divider restarts at each
@@ -268,6 +270,7 @@ fn nonzero(v: u32, len: u32) -> u32 {
 }
 
 /// The video timing counters. All state is here, so saving it saves the timing.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Timing {
     /// Console region (video clock).

@@ -221,7 +221,7 @@ fn command_buffer_reset() {
 /// most-recent-first; the walk ends at the terminator.
 #[test]
 fn ordering_table_order() {
-    let mut ot = OrderingTable::new(8, 64);
+    let mut ot = OrderingTable::new(8, 64).unwrap();
     ot.insert(1, &[0x11]).unwrap();
     ot.insert(6, &[0x61, 0x62]).unwrap();
     ot.insert(1, &[0x12]).unwrap();
@@ -242,7 +242,7 @@ fn ordering_table_order() {
 
 #[test]
 fn ordering_table_errors() {
-    let mut ot = OrderingTable::new(4, 4);
+    let mut ot = OrderingTable::new(4, 4).unwrap();
     assert_eq!(
         ot.insert(4, &[0]),
         Err(OtError::IndexOutOfRange { index: 4, depth: 4 })
@@ -268,7 +268,7 @@ fn ordering_table_errors() {
 /// Walking into a GPU draws in painter's order: a far red rectangle under a near green one.
 #[test]
 fn ordering_table_draws_far_first() {
-    let mut ot = OrderingTable::new(16, 64);
+    let mut ot = OrderingTable::new(16, 64).unwrap();
     ot.insert(2, &[0x6000_FF00, 0, 0x0004_0004]).unwrap(); // near, green
     ot.insert(10, &[0x6000_00FF, 0, 0x0008_0008]).unwrap(); // far, red
     let mut g = Gpu::new();

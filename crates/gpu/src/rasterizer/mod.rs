@@ -263,10 +263,6 @@ pub(crate) const fn wrap11(v: i32) -> i32 {
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
 
-fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
-    vram.as_mut_slice().try_into().ok()
-}
-
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
     state: &DrawState,
@@ -305,9 +301,7 @@ pub fn draw_triangle_rows(
     tri: &Triangle,
     rows: Rows,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (g, b, d, m) = (
@@ -336,9 +330,7 @@ pub fn draw_triangle_precise(
     at: &[precise::PreciseVertex; 3],
     perspective: bool,
 ) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
@@ -359,9 +351,7 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
 /// [`draw_line`] writing only the lines `rows` keeps. Lines test each pixel's row, so the
 /// filter is a const parameter: an unfiltered line has no row test.
 pub fn draw_line_rows(vram: &mut Vram, state: &DrawState, line: &Line, rows: Rows) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    let vram = vram.as_array_mut();
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -396,9 +386,7 @@ pub fn draw_rectangle_rows(
     rect: &Rectangle,
     rows: Rows,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);
     let (b, m) = (rect.blend.is_some(), state.mask.check);

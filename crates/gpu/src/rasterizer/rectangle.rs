@@ -1,5 +1,6 @@
 //! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
-//! wrapped at 256 (decremented when flipped), clipped to the drawing area.
+//! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
+//! to the drawing area.
 
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
@@ -39,8 +40,10 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
     let du: u8 = if rect.flip_x { 255 } else { 1 };
     let dv: u8 = if rect.flip_y { 255 } else { 1 };
+    // With the X flip the origin column samples u0 | 1, not u0 (docs/hardware/gpu.md §5).
+    let u0 = if rect.flip_x { o.u | 1 } else { o.u };
     // Texel at the first drawn column: u0 + (x_start - x0) steps.
-    let u_start = o.u.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
+    let u_start = u0.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
     filter.each(y_start, y_end, |y| {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
