@@ -10,6 +10,7 @@ extern crate alloc;
 
 pub mod color;
 pub mod command_stream;
+pub mod decode;
 mod display;
 mod gp0;
 pub mod ordering_table;

@@ -3,6 +3,7 @@
 
 pub mod default_scene;
 pub mod gte_replay;
+pub mod inspect;
 pub mod mesh;
 pub mod pipeline;
 pub mod quantize;
