@@ -253,7 +253,7 @@ pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
 enum Verdict {
     /// Discarded whole: a vertex behind or too near the camera (SZ3 saturated, divide
     /// overflow), a saturated SX/SY, or a size the GPU would drop (gpu.md §3).
-    Drop,
+    Drop(DropCause),
     /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (gte.md §7).
     Cull,
     /// Entirely outside the screen.
@@ -265,6 +265,76 @@ enum Verdict {
         ir0: I4F12,
         extent: i32,
     },
+}
+
+/// Why the GTE stage discards a polygon whole.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DropCause {
+    /// A vertex behind or too near the camera (SZ3 saturated, divide overflow), or a
+    /// saturated SX/SY (gte.md §5, §6).
+    NearPlane,
+    /// Bigger on screen than the GPU draws: a vertex pair 1024 or more apart in X or 512 in
+    /// Y (gpu.md §3).
+    SizeLimit,
+}
+
+/// What happened to one polygon (a mesh face, or a piece of one after splitting) in a
+/// traced frame ([`Renderer::render_frame_traced`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FaceFate {
+    /// Split into four by tessellation (its pieces follow with the next level).
+    Split,
+    /// Back face removed by NCLIP.
+    Culled,
+    /// Dropped whole.
+    Dropped(DropCause),
+    /// Entirely off screen.
+    Offscreen,
+    /// The polygon list was full.
+    Overflow,
+    /// Linked into the ordering table at this slot and drawn.
+    Drawn {
+        /// OT entry.
+        ot_slot: u16,
+    },
+}
+
+/// One polygon's record in a traced frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaceRecord {
+    /// Index into the scene's objects.
+    pub object: usize,
+    /// Face index in the object's mesh (faces with invalid vertex indices skipped).
+    pub face: usize,
+    /// Tessellation level of this piece (0: the face itself).
+    pub level: u8,
+    /// What happened to it.
+    pub fate: FaceFate,
+}
+
+/// A traced frame: the faces' fates and the GP0 packets of the GPU stage, each tagged with
+/// the face it draws.
+#[derive(Clone, Debug)]
+pub struct FrameTrace {
+    /// The GPU as it was before the GPU stage (textures and the previous frame in VRAM).
+    pub gpu_before: Gpu,
+    /// Every polygon examined, in pipeline order.
+    pub faces: Vec<FaceRecord>,
+    /// The GP0 packets in the order the GPU received them (environment and fill, then the
+    /// OT walk); for each, the index into `faces` of the polygon it draws, if any.
+    pub packets: Vec<(Vec<u32>, Option<usize>)>,
+    /// The GP1 word that displays the frame.
+    pub display_word: u32,
+}
+
+/// Per-frame trace state, kept only while tracing.
+#[derive(Clone, Debug, Default)]
+struct TraceSink {
+    faces: Vec<FaceRecord>,
+    /// Face record of each `scratch` entry.
+    scratch_face: Vec<usize>,
+    /// (OT node index, face record) of each linked packet.
+    node_face: Vec<(usize, usize)>,
 }
 
 /// Screen bounding box (min x, max x, min y, max y) of some vertices.
@@ -301,7 +371,7 @@ fn transform(g: &mut Geometry, face: &PreparedFace, (w, h): (i32, i32)) -> Verdi
         ir0 = q.ir0;
     }
     if flag.intersects(DROP_FLAGS) {
-        return Verdict::Drop;
+        return Verdict::Drop(DropCause::NearPlane);
     }
     if area <= 0 {
         return Verdict::Cull;
@@ -313,7 +383,7 @@ fn transform(g: &mut Geometry, face: &PreparedFace, (w, h): (i32, i32)) -> Verdi
     }
     // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (gpu.md §3).
     if gpu_drops(&xy[..3]) || (face.quad && gpu_drops(&xy[1..])) {
-        return Verdict::Drop;
+        return Verdict::Drop(DropCause::SizeLimit);
     }
     Verdict::Draw {
         xy,
@@ -377,6 +447,8 @@ pub struct Renderer {
     stack: SplitStack,
     capacity: usize,
     display: DisplayArea,
+    /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
+    trace: Option<Box<TraceSink>>,
     /// CLUT cache of the precise path (the GPU's own is private to it).
     clut: ClutCache,
     /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
@@ -564,6 +636,7 @@ impl Renderer {
             display,
             clut: ClutCache::default(),
             precise_vertices: Vec::new(),
+            trace: None,
         })
     }
 
@@ -608,6 +681,54 @@ impl Renderer {
         stats
     }
 
+    /// Render frame `frame` like [`Renderer::render_frame`] and record what happened to
+    /// every polygon and which GP0 packet draws it. Only the hardware path can be traced
+    /// (an error names the precise-path knobs otherwise).
+    pub fn render_frame_traced(&mut self, frame: u32) -> Result<(FrameStats, FrameTrace), String> {
+        if self.options.precise() {
+            return Err(
+                "tracing needs the hardware path: drop --subpixel / --perspective-uv".into(),
+            );
+        }
+        self.trace = Some(Box::default());
+        let mut stats = FrameStats::default();
+        self.gte_stage(frame, &mut stats);
+        self.ot_stage(&mut stats);
+        let sink = self.trace.take().unwrap_or_default();
+        let gpu_before = self.gpu.clone();
+        let screen = self.scene.screen;
+        let buffer_y = (frame % 2) * screen.height as u32;
+        let dither = self.options.dither.unwrap_or(screen.dither);
+        let env = frame_environment(&screen, buffer_y, dither);
+        let mut packets: Vec<(Vec<u32>, Option<usize>)> = Vec::new();
+        for w in &env[..6] {
+            packets.push((vec![*w], None));
+        }
+        packets.push((env[6..].to_vec(), None));
+        let ram = self.ot.ram();
+        let base = ram.as_ptr() as usize;
+        let _ = self.ot.walk(|words| {
+            // A packet's words follow its node header in the OT's RAM image.
+            let node = (words.as_ptr() as usize - base) / 4 - 1;
+            let face = sink
+                .node_face
+                .iter()
+                .find(|(n, _)| *n == node)
+                .map(|&(_, f)| f);
+            packets.push((words.to_vec(), face));
+        });
+        self.gpu_stage(frame);
+        Ok((
+            stats,
+            FrameTrace {
+                gpu_before,
+                faces: sink.faces,
+                packets,
+                display_word: display_word(buffer_y),
+            },
+        ))
+    }
+
     fn gte_stage(&mut self, frame: u32, stats: &mut FrameStats) {
         self.scratch.clear();
         let scene = &self.scene;
@@ -637,7 +758,15 @@ impl Renderer {
             // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (gte.md §8).
             g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
         }
-        for (object, prepared) in scene.objects.iter().zip(&self.objects) {
+        let mut trace = self.trace.as_deref_mut();
+        if let Some(t) = trace.as_deref_mut() {
+            t.faces.clear();
+            t.scratch_face.clear();
+            t.node_face.clear();
+        }
+        for (object_index, (object, prepared)) in
+            scene.objects.iter().zip(&self.objects).enumerate()
+        {
             let r = object_rotation(object, frame);
             let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
             let (rt, tr) = object_transform(scene, object, frame);
@@ -667,23 +796,40 @@ impl Renderer {
                 let tpage = p.texpage(depth) | (blend.unwrap_or(0) as u32) << 5;
                 (p.clut_attr(), tpage)
             });
-            for face in &prepared.faces {
+            for (face_index, face) in prepared.faces.iter().enumerate() {
                 stack.push(*face, 0);
                 while let Some((face, level)) = stack.pop() {
                     let verdict = transform(g, &face, (w, h));
                     let split = level < prepared.level
                         && match verdict {
-                            Verdict::Drop => true,
+                            Verdict::Drop(_) => true,
                             Verdict::Draw { extent, .. } => extent > split_extent,
                             Verdict::Cull | Verdict::Offscreen => false,
                         };
+                    if let Some(t) = trace.as_deref_mut() {
+                        let fate = match verdict {
+                            _ if split => FaceFate::Split,
+                            Verdict::Drop(c) => FaceFate::Dropped(c),
+                            Verdict::Cull => FaceFate::Culled,
+                            Verdict::Offscreen => FaceFate::Offscreen,
+                            Verdict::Draw { .. } if scratch.len() >= capacity => FaceFate::Overflow,
+                            // The slot is filled in below.
+                            Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
+                        };
+                        t.faces.push(FaceRecord {
+                            object: object_index,
+                            face: face_index,
+                            level,
+                            fate,
+                        });
+                    }
                     if split {
                         stack.push_split(&face, level + 1);
                         continue;
                     }
                     stats.polygons += 1;
                     let (xy, sz, ir0) = match verdict {
-                        Verdict::Drop => {
+                        Verdict::Drop(_) => {
                             stats.dropped += 1;
                             continue;
                         }
@@ -758,12 +904,20 @@ impl Renderer {
                         }
                         precise_vertices.push(precise);
                     }
+                    let ot_index = ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16;
+                    if let Some(t) = trace.as_deref_mut() {
+                        let record = t.faces.len() - 1;
+                        if let Some(r) = t.faces.last_mut() {
+                            r.fate = FaceFate::Drawn { ot_slot: ot_index };
+                        }
+                        t.scratch_face.push(record);
+                    }
                     scratch.push(ProjectedFace {
                         xy,
                         color,
                         uv: v.map(|p| p.texel()),
                         quad: face.quad,
-                        ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
+                        ot_index,
                         texture,
                         blend,
                     });
@@ -786,7 +940,14 @@ impl Renderer {
             }
             return;
         }
-        for f in &self.scratch {
+        for (k, f) in self.scratch.iter().enumerate() {
+            if let Some(t) = self.trace.as_deref_mut()
+                && let Some(&record) = t.scratch_face.get(k)
+            {
+                // The packet's node goes where the primitive buffer's free space starts.
+                t.node_face
+                    .push((self.ot.depth() + self.ot.used_words(), record));
+            }
             let n = if f.quad { 4 } else { 3 };
             // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
             // packet, which the GPU draws without colour interpolation.
@@ -843,21 +1004,9 @@ impl Renderer {
     fn gpu_stage(&mut self, frame: u32) {
         let screen = self.scene.screen;
         let buffer_y = (frame % 2) * screen.height as u32;
-        let (w, h) = (screen.width as u32, screen.height as u32);
         let dither = self.options.dither.unwrap_or(screen.dither);
-        let [r, g, b] = screen.background;
         let gpu = &mut self.gpu;
-        gpu.gp0_words(&[
-            0xE100_0000 | (dither as u32) << 9,
-            0xE200_0000,
-            0xE300_0000 | buffer_y << 10,
-            0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
-            0xE500_0000 | (buffer_y & 0x7FF) << 11,
-            0xE600_0000,
-            0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
-            buffer_y << 16,
-            h << 16 | w,
-        ]);
+        gpu.gp0_words(&frame_environment(&screen, buffer_y, dither));
         // Bad links cannot occur in a table this renderer built; a walk error leaves the
         // frame partly drawn rather than stopping the renderer.
         if self.options.precise() {
@@ -882,10 +1031,33 @@ impl Renderer {
         } else {
             let _ = self.ot.walk_into(gpu);
         }
-        gpu.gp1(0x0500_0000 | buffer_y << 10);
+        gpu.gp1(display_word(buffer_y));
         self.display = gpu.display_area();
         self.display.height = screen.height;
     }
+}
+
+/// The GP0 words that start a frame in the back buffer at line `buffer_y`: draw mode,
+/// texture window, drawing area, offset, mask, and a fill with the background colour.
+fn frame_environment(screen: &crate::scene::Screen, buffer_y: u32, dither: bool) -> [u32; 9] {
+    let (w, h) = (screen.width as u32, screen.height as u32);
+    let [r, g, b] = screen.background;
+    [
+        0xE100_0000 | (dither as u32) << 9,
+        0xE200_0000,
+        0xE300_0000 | buffer_y << 10,
+        0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
+        0xE500_0000 | (buffer_y & 0x7FF) << 11,
+        0xE600_0000,
+        0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
+        buffer_y << 16,
+        h << 16 | w,
+    ]
+}
+
+/// GP1(05h): display the buffer at line `buffer_y`.
+fn display_word(buffer_y: u32) -> u32 {
+    0x0500_0000 | buffer_y << 10
 }
 
 /// Upload halfwords into a `width`-halfword-wide VRAM rectangle at (x, y) with GP0(A0h).

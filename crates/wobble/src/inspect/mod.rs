@@ -21,6 +21,9 @@ use std::path::{Path, PathBuf};
 use crate::vram_image::{self, Expand, PageDepth};
 
 mod base64_lite;
+mod frame;
+
+pub use frame::write_frame_report;
 
 /// The page, its script and its style, written next to the data.
 const INDEX_HTML: &str = include_str!("assets/index.html");
@@ -537,7 +540,7 @@ fn run_one(
     let origin = origins
         .and_then(|o| o.get(&cmd.line))
         .map(|o| o.text.clone());
-    Ok(json!({
+    let mut row = json!({
         "i": index,
         "line": cmd.line,
         "last": cmd.last_line,
@@ -554,7 +557,12 @@ fn run_one(
         "tex": tex_json,
         "truncated": truncated,
         "origin": origin,
-    }))
+    });
+    // Empty entries are left out: the page treats a missing key as null or empty.
+    if let Value::Object(m) = &mut row {
+        m.retain(|_, v| !(v.is_null() || v.as_array().is_some_and(|a| a.is_empty())));
+    }
+    Ok(row)
 }
 
 /// Arguments of `wobble inspect`.

@@ -37,7 +37,13 @@ var INSPECT = (function () {
       });
     });
   }
-  function row(i) { var c = chunks[Math.floor(i / idx.chunk)]; return c ? c[i % idx.chunk] : null; }
+  // Rows leave out empty entries; fill them back.
+  function row(i) {
+    var c = chunks[Math.floor(i / idx.chunk)], r = c ? c[i % idx.chunk] : null;
+    if (r && !r.prims) { r.prims = []; }
+    if (r && !r.fields) { r.fields = []; }
+    return r;
+  }
   function result(r) {
     if (r.truncated) return '<span class="warn">' + esc(r.truncated) + "</span>";
     if (!r.prims.length) return "";
