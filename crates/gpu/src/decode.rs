@@ -416,8 +416,8 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
         *slot = *w;
     }
     let complete = words.len() >= len;
-    let (mut d, fixed_part_ok) = match op {
-        0x01 => (Decoded::new(Kind::ClearCache, "clear cache"), true),
+    let mut d = match op {
+        0x01 => Decoded::new(Kind::ClearCache, "clear cache"),
         0x02 => {
             let mut d = Decoded::new(Kind::Fill, "fill");
             let (pos, size) = (packet[1], packet[2]);
@@ -432,14 +432,14 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
             if complete {
                 d.writes = wrapped_bounds(x, y, w, h);
             }
-            (d, true)
+            d
         }
-        0x1F => (Decoded::new(Kind::Irq, "IRQ"), true),
+        0x1F => Decoded::new(Kind::Irq, "IRQ"),
         0x20..=0x3F => (
             polygon(&packet, draw, texture_disable_allowed, complete),
             false,
         ),
-        0x40..=0x5F => (line(words, &packet, draw, complete), false),
+        0x40..=0x5F => line(words, &packet, draw, complete),
         0x60..=0x7F => (
             rectangle(&packet, draw, texture_disable_allowed, complete),
             false,
@@ -453,7 +453,7 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
             if complete {
                 d.writes = wrapped_bounds(dst.x.into(), dst.y.into(), dst.w.into(), dst.h.into());
             }
-            (d, true)
+            d
         }
         0xA0..=0xBF => {
             let mut d = Decoded::new(Kind::CpuToVram, "CPU to VRAM");
@@ -473,18 +473,17 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
                     });
                 }
             }
-            (d, true)
+            d
         }
         0xC0..=0xDF => {
             let mut d = Decoded::new(Kind::VramToCpu, "VRAM to CPU");
             let r = TransferRect::decode(packet[1], packet[2]);
             transfer_fields(&mut d, "source", &r);
-            (d, true)
+            d
         }
-        0xE1..=0xE6 => (environment(cmd, draw, texture_disable_allowed), true),
-        _ => (Decoded::new(Kind::Nop, "NOP"), true),
+        0xE1..=0xE6 => environment(cmd, draw, texture_disable_allowed),
+        _ => Decoded::new(Kind::Nop, "NOP"),
     };
-    let _ = fixed_part_ok;
     if !complete && d.truncated.is_none() {
         d.truncated = Some(Truncation {
             have: words.len(),
