@@ -435,15 +435,9 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
             d
         }
         0x1F => Decoded::new(Kind::Irq, "IRQ"),
-        0x20..=0x3F => (
-            polygon(&packet, draw, texture_disable_allowed, complete),
-            false,
-        ),
+        0x20..=0x3F => polygon(&packet, draw, texture_disable_allowed, complete),
         0x40..=0x5F => line(words, &packet, draw, complete),
-        0x60..=0x7F => (
-            rectangle(&packet, draw, texture_disable_allowed, complete),
-            false,
-        ),
+        0x60..=0x7F => rectangle(&packet, draw, texture_disable_allowed, complete),
         0x80..=0x9F => {
             let mut d = Decoded::new(Kind::VramCopy, "VRAM copy");
             let src = TransferRect::decode(packet[1], packet[3]);
@@ -785,7 +779,7 @@ fn complete(words: &[u32]) -> bool {
         0x40..=0x5F if cmd & (1 << 27) != 0 => {
             let per_vertex = if cmd & (1 << 28) != 0 { 2 } else { 1 };
             n > len
-                && (n - 1 - len) % per_vertex == 0
+                && (n - 1 - len).is_multiple_of(per_vertex)
                 && words.last().is_some_and(|&w| is_terminator(w))
         }
         _ => true,

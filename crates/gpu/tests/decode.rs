@@ -28,12 +28,14 @@ fn check(gpu: &mut Gpu, words: &[u32]) -> Result<(), TestCaseError> {
                     "({x}, {y}) outside {b:?} for {words:x?}"
                 );
                 // The pixel lies in the bounds of some drawn primitive.
-                prop_assert!(d.primitives.iter().any(|p| match p.coverage() {
-                    Coverage::Drawn(b) =>
+                let inside = d.primitives.iter().any(|p| match p.coverage() {
+                    Coverage::Drawn(b) => {
                         (b.left as usize..=b.right as usize).contains(&x)
-                            && (b.top as usize..=b.bottom as usize).contains(&y),
+                            && (b.top as usize..=b.bottom as usize).contains(&y)
+                    }
                     Coverage::Dropped(_) => false,
-                }));
+                });
+                prop_assert!(inside, "({}, {}) outside every drawn primitive", x, y);
             }
         }
     }

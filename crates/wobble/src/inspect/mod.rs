@@ -130,12 +130,16 @@ fn write_region(d: &Decoded) -> Option<PixelBounds> {
     }
 }
 
+/// A texture-page view: page X/Y, depth, CLUT X/Y, and the change counts of the VRAM
+/// blocks it reads.
+type ViewKey = (u16, u16, u8, u16, u16, [u64; 5]);
+
 /// Texture-page views already written, keyed by what they show and the VRAM version of
 /// the blocks they read.
 struct TextureViews {
     /// Changes seen per 64x256 VRAM block (16 x 2 blocks).
     generation: [u64; 32],
-    written: HashMap<(u16, u16, u8, u16, u16, [u64; 5]), String>,
+    written: HashMap<ViewKey, String>,
     max: usize,
 }
 
