@@ -6,7 +6,6 @@ use gpu::command_stream::{self, Port};
 use gpu::{Gpu, VRAM_LEN};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use wobble::inspect::{InspectOptions, InspectSummary, write_report};
 
 fn fixture(name: &str) -> PathBuf {
@@ -332,38 +331,6 @@ fn a_million_commands_stay_usable() {
         ))
         .is_file()
     );
-    let _ = std::fs::remove_dir_all(&dir);
-}
-
-#[test]
-fn command_line() {
-    let dir = out_dir("cli");
-    let out = Command::new(env!("CARGO_BIN_EXE_wobble"))
-        .args(["inspect", fixture("triangle.gpu").to_str().unwrap(), "-o"])
-        .arg(&dir)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        stdout.contains("commands") && stdout.contains("index.html"),
-        "{stdout}"
-    );
-    assert!(dir.join("index.html").is_file());
-    // A malformed stream is a clear error naming the line.
-    let bad = dir.join("bad.gpu");
-    std::fs::write(&bad, "gp0 e3000000\ngp0 zz\n").unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_wobble"))
-        .args(["inspect", bad.to_str().unwrap(), "-o"])
-        .arg(dir.join("bad"))
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("line 2"));
     let _ = std::fs::remove_dir_all(&dir);
 }
 

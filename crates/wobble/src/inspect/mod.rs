@@ -569,43 +569,22 @@ fn run_one(
     Ok(row)
 }
 
-/// Arguments of `wobble inspect`.
-#[derive(Debug, Clone, clap::Args)]
-pub struct InspectArgs {
-    /// Command stream (.gpu text, docs/formats.md).
-    pub stream: PathBuf,
-    /// Output directory (created; existing report files in it are overwritten).
-    #[arg(short, long, default_value = "inspect-report")]
-    pub output: PathBuf,
-    /// Commands that get a before/after image; later ones are listed without.
-    #[arg(long, default_value_t = InspectOptions::default().max_images)]
-    pub max_images: usize,
-}
-
-/// Run `wobble inspect`; returns the summary line.
-pub fn run(args: &InspectArgs) -> Result<String, String> {
-    let text = std::fs::read_to_string(&args.stream).map_err(|e| io_err(&args.stream, e))?;
+/// Write the report of the command stream in file `stream` into `out`; the title is the
+/// file's name. Errors name the file (and, for a malformed stream, the line).
+pub fn inspect_stream(
+    stream: &Path,
+    out: &Path,
+    options: InspectOptions,
+) -> Result<InspectSummary, String> {
+    let text = std::fs::read_to_string(stream).map_err(|e| io_err(stream, e))?;
     let commands =
-        gpu::command_stream::parse(&text).map_err(|e| format!("{}: {e}", args.stream.display()))?;
-    let title = args.stream.file_name().map_or_else(
+        gpu::command_stream::parse(&text).map_err(|e| format!("{}: {e}", stream.display()))?;
+    let title = stream.file_name().map_or_else(
         || "stream".to_string(),
         |n| n.to_string_lossy().into_owned(),
     );
-    let options = InspectOptions {
-        max_images: args.max_images,
-        ..InspectOptions::default()
-    };
     let mut gpu = Gpu::new();
-    let s = write_report(
-        &mut gpu,
-        &commands,
-        &args.output,
-        &title,
-        options,
-        None,
-        None,
-    )?;
-    Ok(summary_line(&s, &args.output))
+    write_report(&mut gpu, &commands, out, &title, options, None, None)
 }
 
 /// The line printed after a report is written.
