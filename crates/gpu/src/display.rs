@@ -1,7 +1,7 @@
 //! GP1 display control (gpu.md §9) and the GPUSTAT register.
 
-use crate::Gpu;
 use crate::state::{BlendMode, TextureDepth};
+use crate::{Gpu, drawing};
 
 /// The part of VRAM the display shows, from GP1(05h) and GP1(08h).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -99,8 +99,13 @@ impl Gpu {
     }
 
     /// GP1(00h): reset the command buffer, IRQ, display and drawing state; VRAM is kept.
+    /// Drawing in progress is abandoned (docs/emulator.md, "Drawing time, FIFO and DMA").
     fn reset(&mut self) {
         self.reset_command_buffer();
+        if !self.drawing.idle() {
+            self.drawing = Default::default();
+            self.drawing.set_done();
+        }
         self.irq = false;
         self.display = DisplayState::default();
         self.draw = Default::default();
@@ -108,8 +113,10 @@ impl Gpu {
         self.clut.invalidate();
     }
 
-    /// GP1(01h): drop any partial packet and transfer.
+    /// GP1(01h): drop any partial packet and transfer, and the FIFO's waiting words; the
+    /// command executing finishes.
     fn reset_command_buffer(&mut self) {
+        self.drawing.clear_fifo();
         self.gp0 = Default::default();
         self.read = Default::default();
     }
@@ -136,8 +143,12 @@ impl Gpu {
     }
 
     /// GPUSTAT (psx-spx "GPU Status Register"): draw mode bits 0-10, mask bits 11-12, display
-    /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA/ready bits 25-28, DMA direction
-    /// 29-30. Bit 13 reads 1 and bit 31 0 (no video timing is modelled).
+    /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA direction 29-30. Bit 13 reads 1
+    /// and bit 31 0 (no video timing is modelled). The ready bits follow the FIFO and the
+    /// drawing time (docs/hardware/dma.md §8): 26 when nothing is being
+    /// received, queued or drawn; 27 while a VRAM-to-CPU transfer has data; 28 unless a
+    /// complete command waits in the FIFO, the FIFO is full, or a polygon or line is being
+    /// received; 25 is 0, FIFO-not-full, bit 28 or bit 27 for DMA direction 0 to 3.
     pub fn gpustat(&self) -> u32 {
         let m = &self.draw.mode;
         let mut s = (m.page_x as u32 / 64) & 0xF;
@@ -149,6 +160,7 @@ impl Gpu {
             BlendMode::AddQuarter => 3,
         }) << 5;
         s |= (match m.depth {
+            _ if m.depth_reserved => 3,
             TextureDepth::Clut4 => 0,
             TextureDepth::Clut8 => 1,
             TextureDepth::Direct15 => 2,
@@ -169,12 +181,13 @@ impl Gpu {
         s |= ((mode >> 5) & 1) << 22;
         s |= (self.display.disabled as u32) << 23;
         s |= (self.irq as u32) << 24;
-        let ready_cmd = self.gp0.idle();
+        let fifo_full = self.drawing.fifo_words() >= drawing::FIFO_WORDS;
+        let ready_cmd = self.gp0.idle() && self.drawing.idle();
         let ready_read = self.read.active();
-        let ready_dma = !self.read.active();
+        let ready_dma = !self.drawing.unit_queued() && !fifo_full && !self.gp0.receiving_vertices();
         let dma_request = match self.display.dma_direction {
             0 => false,
-            1 => true,
+            1 => !fifo_full,
             2 => ready_dma,
             _ => ready_read,
         };

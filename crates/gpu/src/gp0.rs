@@ -2,6 +2,7 @@
 //! commands into primitives, environment commands E1h-E6h, and the transfer commands
 //! (gpu.md §2, §8).
 
+use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
 use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
@@ -96,6 +97,22 @@ impl Gp0State {
     pub(crate) fn idle(&self) -> bool {
         self.len == 0 && self.mode == Mode::Command
     }
+
+    /// A polygon or line packet is being received: psx-spx ("GPU Status Register", "Ready
+    /// Bits") has GPUSTAT.28 clear from its command word on.
+    pub(crate) fn receiving_vertices(&self) -> bool {
+        match self.mode {
+            Mode::Polyline(_) => true,
+            Mode::Command => self.len != 0 && matches!(self.buf[0] >> 24, 0x20..=0x5F),
+            Mode::Write(_) => false,
+        }
+    }
+}
+
+/// Whether a command word occupies FIFO space: psx-spx ("GPU Other Commands") lists GP0(00h),
+/// its mirrors 04h-1Eh, E0h, E7h-EFh, and E3h-E5h as taking none.
+fn takes_fifo_space(cmd: u32) -> bool {
+    !matches!(cmd >> 24, 0x00 | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF)
 }
 
 /// Words in the packet a command word starts (gpu.md §2).
@@ -172,6 +189,7 @@ impl DrawMode {
         self.page_y = ((attr >> 4 & 1) * 256) as u16;
         self.blend = blend_mode(attr >> 5);
         self.depth = texture_depth(attr >> 7);
+        self.depth_reserved = attr >> 7 & 3 == 3;
         self.texture_disable = attr & (1 << 11) != 0;
     }
 }
@@ -351,14 +369,21 @@ pub(crate) fn rectangle_packet(
 impl Gpu {
     /// One word written to the GP0 port.
     pub fn gp0(&mut self, word: u32) {
-        match self.gp0.mode {
+        let units = match self.gp0.mode {
             Mode::Write(mut t) => {
+                self.drawing.receive(true);
                 let more = t.push(&mut self.vram, word, self.draw.mask);
                 self.gp0.mode = if more { Mode::Write(t) } else { Mode::Command };
+                Some(Cost::WRITE_WORD)
             }
-            Mode::Polyline(p) => self.polyline_word(p, word),
+            Mode::Polyline(p) => {
+                self.drawing.receive(true);
+                self.polyline_word(p, word)
+            }
             Mode::Command => {
                 let len = self.gp0.len;
+                let head = if len == 0 { word } else { self.gp0.buf[0] };
+                self.drawing.receive(takes_fifo_space(head));
                 if let Some(slot) = self.gp0.buf.get_mut(len) {
                     *slot = word;
                 }
@@ -366,22 +391,39 @@ impl Gpu {
                 if self.gp0.len >= packet_len(self.gp0.buf[0]) {
                     let packet = self.gp0.buf;
                     self.gp0.len = 0;
-                    self.execute(&packet);
+                    Some(self.execute(&packet))
+                } else {
+                    None
                 }
             }
+        };
+        if let Some(units) = units {
+            self.drawing.complete(units_to_gpu(units as u64));
         }
     }
 
-    fn execute(&mut self, p: &[u32; MAX_PACKET]) {
+    /// Execute a complete packet; returns its cost in draw units.
+    fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         match cmd >> 24 {
             0x01 => self.clut.invalidate(),
-            0x02 => transfer::fill(&mut self.vram, cmd, p[1], p[2]),
-            0x1F => self.irq = true,
-            0x20..=0x3F => self.polygon(p),
-            0x40..=0x5F => self.line(p),
-            0x60..=0x7F => self.rectangle(p),
-            0x80..=0x9F => transfer::copy(&mut self.vram, p[1], p[2], p[3], self.draw.mask),
+            0x02 => {
+                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2]);
+                return Cost::fill(w, h);
+            }
+            0x1F => {
+                if !self.irq {
+                    self.irq_event = true;
+                }
+                self.irq = true;
+            }
+            0x20..=0x3F => return self.polygon(p),
+            0x40..=0x5F => return self.line(p),
+            0x60..=0x7F => return self.rectangle(p),
+            0x80..=0x9F => {
+                let pixels = transfer::copy(&mut self.vram, p[1], p[2], p[3], self.draw.mask);
+                return Cost::copy(pixels);
+            }
             0xA0..=0xBF => {
                 let rect = TransferRect::decode(p[1], p[2]);
                 self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
@@ -390,6 +432,7 @@ impl Gpu {
             0xE1..=0xE6 => apply_environment(&mut self.draw, cmd, self.texture_disable_allowed),
             _ => {}
         }
+        0
     }
 
     /// A vertex from a position word plus the drawing offset (gpu.md §2).
@@ -403,36 +446,64 @@ impl Gpu {
         }
     }
 
-    fn polygon(&mut self, p: &[u32; MAX_PACKET]) {
+    fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let cmd = p[0];
+        let gouraud = cmd & (1 << 28) != 0;
+        let semi = cmd & (1 << 25) != 0;
         let packet = polygon_packet(p, &self.draw, self.texture_disable_allowed);
         self.draw.mode = packet.mode;
-        draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &packet.first);
+        let tri = packet.first;
+        let textured = tri.texture.is_some();
+        let clut_units = tri
+            .texture
+            .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
+        let read_back = semi || self.draw.mask.check;
+        let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        let mut units =
+            clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
         if let Some(second) = &packet.second {
-            draw_triangle(&mut self.vram, &self.draw, &mut self.clut, second);
+            let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, second);
+            units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
+        units
     }
 
-    fn line(&mut self, p: &[u32; MAX_PACKET]) {
+    fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let line = line_packet(p, &self.draw);
-        draw_line(&mut self.vram, &self.draw, &line);
+        let drawn = draw_line(&mut self.vram, &self.draw, &line);
         if p[0] & (1 << 27) != 0 {
             self.gp0.mode = Mode::Polyline(Polyline::new(line));
         }
+        Cost::line(drawn)
     }
 
-    fn polyline_word(&mut self, p: Polyline, word: u32) {
-        self.gp0.mode = match p.step(&self.draw, word) {
-            PolylineStep::End => Mode::Command,
-            PolylineStep::Color(p) => Mode::Polyline(p),
-            PolylineStep::Segment(p) => {
-                draw_line(&mut self.vram, &self.draw, &p.line);
-                Mode::Polyline(p)
+    /// One polyline word; returns the cost of the unit it completes (a segment, or the
+    /// terminator), in draw units.
+    fn polyline_word(&mut self, p: Polyline, word: u32) -> Option<u32> {
+        match p.step(&self.draw, word) {
+            PolylineStep::End => {
+                self.gp0.mode = Mode::Command;
+                Some(0)
             }
-        };
+            PolylineStep::Color(p) => {
+                self.gp0.mode = Mode::Polyline(p);
+                None
+            }
+            PolylineStep::Segment(p) => {
+                let drawn = draw_line(&mut self.vram, &self.draw, &p.line);
+                self.gp0.mode = Mode::Polyline(p);
+                Some(Cost::line(drawn))
+            }
+        }
     }
 
-    fn rectangle(&mut self, p: &[u32; MAX_PACKET]) {
+    fn rectangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let semi = p[0] & (1 << 25) != 0;
         let rect = rectangle_packet(p, &self.draw, self.texture_disable_allowed);
-        draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        let clut_units = rect
+            .texture
+            .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
+        let drawn = draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        clut_units.saturating_add(Cost::rectangle(semi || self.draw.mask.check, drawn))
     }
 }

@@ -12,6 +12,8 @@ pub mod color;
 pub mod command_stream;
 pub mod decode;
 mod display;
+mod dma;
+mod drawing;
 mod gp0;
 pub mod ordering_table;
 pub mod primitive;
@@ -24,6 +26,10 @@ use alloc::boxed::Box;
 use alloc::vec;
 
 pub use display::{DisplayArea, DisplayState};
+pub use dma::{
+    DmaError, LINKED_LIST_WORD_BUDGET, LinkedListReport, ListEnd, RAM_MASK, RAM_SIZE,
+    dma_clear_ordering_table,
+};
 use state::DrawState;
 use texture::ClutCache;
 
@@ -93,8 +99,27 @@ pub struct Gpu {
     display: DisplayState,
     gpuread_latch: u32,
     irq: bool,
+    /// GP0(1Fh) raised the IRQ and `run` has not reported it yet.
+    irq_event: bool,
     texture_disable_allowed: bool,
+    drawing: drawing::Drawing,
+    /// CPU-to-GPU clock conversion remainder (GPU cycles * 33 868 800).
+    clock_remainder: u64,
 }
+
+/// What happened during one [`Gpu::run`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Events {
+    /// GP0(1Fh) raised the GPU IRQ since the previous run.
+    pub gpu_irq: bool,
+    /// The GPU went from busy (drawing, or commands waiting in the FIFO) to idle.
+    pub drawing_done: bool,
+}
+
+/// CPU clock in Hz (44100 * 768).
+const CPU_HZ: u64 = 33_868_800;
+/// NTSC GPU clock in Hz.
+const GPU_HZ: u64 = 53_693_175;
 
 impl Gpu {
     /// A GPU in its reset state with all-zero VRAM.
@@ -108,7 +133,34 @@ impl Gpu {
             display: DisplayState::default(),
             gpuread_latch: 0,
             irq: false,
+            irq_event: false,
             texture_disable_allowed: false,
+            drawing: drawing::Drawing::default(),
+            clock_remainder: 0,
+        }
+    }
+
+    /// Advance time by `cpu_cycles` CPU cycles and report what happened.
+    pub fn run(&mut self, cpu_cycles: u32) -> Events {
+        let total = cpu_cycles as u64 * GPU_HZ + self.clock_remainder;
+        let gpu_cycles = u32::try_from(total / CPU_HZ).unwrap_or(u32::MAX);
+        self.clock_remainder = total % CPU_HZ;
+        let (gpu_irq, drawing_done) = self.advance_drawing(gpu_cycles);
+        Events {
+            gpu_irq,
+            drawing_done,
+        }
+    }
+
+    /// CPU cycles until [`Gpu::run`] would report an event (rounded up, so running exactly
+    /// this many reaches it); 0 when one awaits delivery; `u32::MAX` when none comes.
+    pub fn cycles_until_next_event(&self) -> u32 {
+        match self.drawing_cycles_until_event() {
+            None => u32::MAX,
+            Some(gpu) => {
+                let need = (gpu as u64 * CPU_HZ).saturating_sub(self.clock_remainder);
+                u32::try_from(need.div_ceil(GPU_HZ)).unwrap_or(u32::MAX)
+            }
         }
     }
 
@@ -127,6 +179,12 @@ impl Gpu {
             self.gpuread_latch = word;
         }
         self.gpuread_latch
+    }
+
+    /// The GPU interrupt line, GPUSTAT.24: set by GP0(1Fh), cleared by GP1(02h) (psx-spx
+    /// "GPU Other Commands").
+    pub fn irq_pending(&self) -> bool {
+        self.irq
     }
 
     /// VRAM.

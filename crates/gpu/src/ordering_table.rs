@@ -5,13 +5,15 @@
 //!
 //! Links are 24-bit byte addresses into the buffer, as in main RAM. A node is a header word
 //! `N << 24 | next` followed by N GP0 words. The walk ends after the node whose link has
-//! bit 23 set (the end marker written by the clear is 00FFFFFFh).
+//! bit 23 set (the end marker written by the clear is 00FFFFFFh). The walk is the one DMA2
+//! uses over main RAM ([`Gpu::dma_linked_list`]).
 
 use alloc::vec;
 use alloc::vec::Vec;
 use core::fmt;
 
 use crate::Gpu;
+use crate::dma::{WalkEnd, WordImage, walk_nodes};
 
 /// The end-of-list marker DMA6 writes into the first entry.
 pub const END_MARKER: u32 = 0x00FF_FFFF;
@@ -69,36 +71,36 @@ pub struct WalkStats {
 }
 
 /// Walk a DMA2 linked list in `ram` (a word image of main RAM, byte address = 4 * index)
-/// from byte address `start`, giving each node's GP0 words to `sink`. The walk is bounded:
-/// a list longer than the buffer has nodes is reported as a cycle.
+/// from byte address `start`, giving each node's GP0 words to `sink`. The walk is the DMA
+/// channel's ([`Gpu::dma_linked_list`] walks RAM with the same walker) and is bounded: a
+/// list with more nodes than the buffer has words revisits a node, and is reported as a
+/// cycle.
 pub fn walk_ram(
     ram: &[u32],
     start: u32,
     mut sink: impl FnMut(&[u32]),
 ) -> Result<WalkStats, OtError> {
     let mut stats = WalkStats::default();
-    let mut addr = start & 0xFF_FFFF;
-    loop {
-        if stats.nodes > ram.len() {
-            return Err(OtError::Cycle);
-        }
-        let index = (addr / 4) as usize;
-        let header = *ram.get(index).ok_or(OtError::BadLink(addr))?;
-        let count = (header >> 24) as usize;
-        let words = ram
-            .get(index + 1..index + 1 + count)
-            .ok_or(OtError::BadLink(addr))?;
-        stats.nodes += 1;
-        if count > 0 {
-            stats.packets += 1;
-            stats.words += count;
-            sink(words);
-        }
-        let next = header & 0xFF_FFFF;
-        if next & 0x80_0000 != 0 {
-            return Ok(stats);
-        }
-        addr = next;
+    let (end, _) = walk_nodes(
+        &WordImage(ram),
+        start,
+        ram.len().saturating_add(1),
+        |addr, count| {
+            let index = (addr / 4) as usize + 1;
+            let count = count as usize;
+            stats.nodes += 1;
+            if let Some(words) = ram.get(index..index + count).filter(|w| !w.is_empty()) {
+                stats.packets += 1;
+                stats.words += count;
+                sink(words);
+            }
+            true
+        },
+    );
+    match end {
+        WalkEnd::EndMarker => Ok(stats),
+        WalkEnd::Stopped(_) => Err(OtError::Cycle),
+        WalkEnd::BadLink(a) => Err(OtError::BadLink(a)),
     }
 }
 

@@ -38,6 +38,9 @@ pub struct DrawMode {
     pub blend: BlendMode,
     /// Texture depth.
     pub depth: TextureDepth,
+    /// E1 bits 7-8 were 3 ("reserved"): textures read as 15-bit, GPUSTAT bits 7-8 read back
+    /// 3 (ps1-tests gpu/gp0-e1).
+    pub depth_reserved: bool,
     /// Dithering enabled (E1 bit 9).
     pub dither: bool,
     /// Drawing to the displayed area allowed (E1 bit 10).

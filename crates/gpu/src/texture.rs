@@ -38,6 +38,22 @@ impl ClutCache {
         &self.entries
     }
 
+    /// How many entries [`ClutCache::latch`] would load from VRAM for `texture`: 0 when the
+    /// cache already holds them or the texture is 15-bit, else 16 or 256.
+    pub fn load_size(&self, texture: &Texture) -> u32 {
+        let needs_8bit = match texture.depth {
+            TextureDepth::Clut4 => false,
+            TextureDepth::Clut8 => true,
+            TextureDepth::Direct15 => return 0,
+        };
+        let key = (texture.clut_x, texture.clut_y);
+        if self.key != Some(key) || (needs_8bit && !self.loaded_8bit) {
+            if needs_8bit { 256 } else { 16 }
+        } else {
+            0
+        }
+    }
+
     /// Make sure the entries a primitive with `texture` needs are latched; returns them.
     pub fn latch(&mut self, vram: &[u16; crate::VRAM_LEN], texture: &Texture) -> &[u16; 256] {
         let needs_8bit = match texture.depth {

@@ -54,8 +54,9 @@ fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSetti
 }
 
 /// GP0(02h) fill (gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
-/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6.
-pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) {
+/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Returns the
+/// filled width and height.
+pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) -> (u32, u32) {
     let x = (pos & 0x3F0) as usize;
     let y = ((pos >> 16) & 0x1FF) as usize;
     let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
@@ -72,11 +73,13 @@ pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) {
             }
         }
     }
+    (w as u32, h as u32)
 }
 
 /// GP0(80h) VRAM-to-VRAM copy (gpu.md §8). Rows are copied top to bottom, each row read
-/// whole before it is written (docs/gpu.md, "Overlapping copies"); E6 applies.
-pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) {
+/// whole before it is written (docs/gpu.md, "Overlapping copies"); E6 applies. Returns the
+/// pixels copied.
+pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) -> u32 {
     let s = TransferRect::decode(src, size);
     let d = TransferRect::decode(dst, size);
     let mut row = [0u16; VRAM_WIDTH];
@@ -90,6 +93,7 @@ pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) 
             write_masked(vram, d.x as usize + c, dy, value, mask);
         }
     }
+    s.pixels()
 }
 
 /// A CPU-to-VRAM transfer in progress (GP0 A0h): pixels arrive two per word; an odd count

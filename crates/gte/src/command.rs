@@ -56,6 +56,7 @@ pub enum Opcode {
 
 impl Opcode {
     /// The opcode for bits 0-5, or `None` for the 42 undefined values.
+    #[inline]
     pub const fn from_bits(bits: u32) -> Option<Opcode> {
         Some(match bits & 0x3F {
             0x01 => Opcode::Rtps,
@@ -85,6 +86,7 @@ impl Opcode {
     }
 
     /// Bits 0-5 of the command word.
+    #[inline]
     pub const fn bits(self) -> u32 {
         match self {
             Opcode::Rtps => 0x01,
@@ -113,6 +115,7 @@ impl Opcode {
     }
 
     /// Cycles the command takes (gte.md §1), for an emulator to charge time.
+    #[inline]
     pub const fn cycles(self) -> u32 {
         match self {
             Opcode::Rtps => 15,
@@ -208,11 +211,13 @@ pub enum TranslationSel {
 
 impl Command {
     /// Wrap a COP2 command word; bits above 24 are dropped.
+    #[inline]
     pub const fn new(word: u32) -> Command {
         Command(word & 0x01FF_FFFF)
     }
 
     /// Build a command word from its fields (the MVMVA selectors are ignored by other opcodes).
+    #[inline]
     pub const fn build(
         opcode: Opcode,
         sf: bool,
@@ -232,26 +237,31 @@ impl Command {
     }
 
     /// The raw 25-bit word.
+    #[inline]
     pub const fn word(self) -> u32 {
         self.0
     }
 
     /// The opcode, or `None` when bits 0-5 name no command.
+    #[inline]
     pub const fn opcode(self) -> Option<Opcode> {
         Opcode::from_bits(self.0)
     }
 
     /// sf (bit 19): results are shifted right by 12 when set.
+    #[inline]
     pub const fn shift(self) -> u32 {
         ((self.0 >> 19) & 1) * 12
     }
 
     /// lm (bit 10): IR1-3 saturate to 0..7FFFh instead of -8000h..7FFFh.
+    #[inline]
     pub const fn lm(self) -> bool {
         self.0 & (1 << 10) != 0
     }
 
     /// MVMVA matrix.
+    #[inline]
     pub const fn mx(self) -> MatrixSel {
         match (self.0 >> 17) & 3 {
             0 => MatrixSel::Rotation,
@@ -262,6 +272,7 @@ impl Command {
     }
 
     /// MVMVA vector.
+    #[inline]
     pub const fn v(self) -> VectorSel {
         match (self.0 >> 15) & 3 {
             0 => VectorSel::V0,
@@ -272,6 +283,7 @@ impl Command {
     }
 
     /// MVMVA add vector.
+    #[inline]
     pub const fn cv(self) -> TranslationSel {
         match (self.0 >> 13) & 3 {
             0 => TranslationSel::Translation,
@@ -282,6 +294,7 @@ impl Command {
     }
 
     /// Cycle count (gte.md §1); `None` for undefined opcodes, which have no hardware timing data.
+    #[inline]
     pub const fn cycles(self) -> Option<u32> {
         match self.opcode() {
             Some(op) => Some(op.cycles()),
@@ -291,6 +304,7 @@ impl Command {
 }
 
 /// Cycle count of a command word (gte.md §1); `None` for undefined opcodes.
+#[inline]
 pub const fn cycles(command: u32) -> Option<u32> {
     Command::new(command).cycles()
 }

@@ -36,7 +36,7 @@ pub use unr::{DivideMode, UnsupportedDivideMode};
 /// control accessors use the low 5 bits, the 64-register [`Gte::read`]/[`Gte::write`] the low
 /// 6. Command words use their low 25 bits. No input panics.
 ///
-/// An emulator's MTC2/CTC2, COP2 command and MFC2 for one RTPS (gte.md §2, §5):
+/// An emulator's MTC2/CTC2, COP2 command and MFC2 for one RTPS (docs/hardware/gte.md §2, §5):
 ///
 /// ```
 /// let mut gte = gte::Gte::new();
@@ -70,27 +70,32 @@ impl Gte {
         Self::default()
     }
 
-    /// MTC2/LWC2: write data register `reg & 31` with its write rules (gte.md §2).
+    /// MTC2/LWC2: write data register `reg & 31` with its write rules (docs/hardware/gte.md §2).
+    #[inline]
     pub fn write_data(&mut self, reg: u32, value: u32) {
         self.regs.write_data(reg, value);
     }
 
-    /// MFC2/SWC2: read data register `reg & 31` with its read rules (gte.md §2).
+    /// MFC2/SWC2: read data register `reg & 31` with its read rules (docs/hardware/gte.md §2).
+    #[inline]
     pub fn read_data(&self, reg: u32) -> u32 {
         self.regs.read_data(reg)
     }
 
-    /// CTC2: write control register `reg & 31` (gte.md §2).
+    /// CTC2: write control register `reg & 31` (docs/hardware/gte.md §2).
+    #[inline]
     pub fn write_control(&mut self, reg: u32, value: u32) {
         self.regs.write_control(reg, value);
     }
 
-    /// CFC2: read control register `reg & 31` (gte.md §2).
+    /// CFC2: read control register `reg & 31` (docs/hardware/gte.md §2).
+    #[inline]
     pub fn read_control(&self, reg: u32) -> u32 {
         self.regs.read_control(reg)
     }
 
     /// Read register `index & 63` of the 64 (0..=31 data via MFC2, 32..=63 control via CFC2).
+    #[inline]
     pub fn read(&self, index: u32) -> u32 {
         if index & 32 == 0 {
             self.read_data(index)
@@ -100,6 +105,7 @@ impl Gte {
     }
 
     /// Write register `index & 63` of the 64 (0..=31 data via MTC2, 32..=63 control via CTC2).
+    #[inline]
     pub fn write(&mut self, index: u32, value: u32) {
         if index & 32 == 0 {
             self.write_data(index, value);
@@ -109,6 +115,7 @@ impl Gte {
     }
 
     /// The FLAG register as a typed set.
+    #[inline]
     pub fn flag(&self) -> Flag {
         self.regs.flag
     }
@@ -172,6 +179,7 @@ impl Gte {
     /// clear FLAG and change nothing else (docs/gte.md, "Undefined opcodes").
     ///
     /// Returns the command's cycle count (gte.md §1), or `None` for an undefined opcode.
+    #[inline]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let command = Command::new(command);
         self.flag_bits = 0;

@@ -17,8 +17,8 @@ pub const REGISTER_NAMES: [&str; 64] = [
 ];
 
 /// The register file as the hardware stores it (16-bit registers keep 16 bits), without the
-/// side effects of MTC2/CTC2 (gte.md §2): setting a field changes that field only. Part of a
-/// [`GteState`](crate::GteState).
+/// side effects of MTC2/CTC2 (docs/hardware/gte.md §2): setting a field changes that field
+/// only. Part of a [`GteState`](crate::GteState).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Registers {
@@ -114,6 +114,7 @@ pub(crate) const fn irgb(ir: [i16; 4]) -> u32 {
     c(ir[1]) | (c(ir[2]) << 5) | (c(ir[3]) << 10)
 }
 
+#[inline]
 fn read_matrix(m: &Matrix, index: u32) -> u32 {
     match index {
         0 => pack(m[0][0], m[0][1]),
@@ -124,6 +125,7 @@ fn read_matrix(m: &Matrix, index: u32) -> u32 {
     }
 }
 
+#[inline]
 fn write_matrix(m: &mut Matrix, index: u32, value: u32) {
     match index {
         0 => (m[0][0], m[0][1]) = (lo(value), hi(value)),
@@ -136,6 +138,7 @@ fn write_matrix(m: &mut Matrix, index: u32, value: u32) {
 
 impl Registers {
     /// MFC2: read data register `reg & 31` (gte.md §2).
+    #[inline]
     pub(crate) fn read_data(&self, reg: u32) -> u32 {
         match reg & 31 {
             r @ (0 | 2 | 4) => pack(self.v[r as usize / 2][0], self.v[r as usize / 2][1]),
@@ -156,6 +159,7 @@ impl Registers {
     }
 
     /// MTC2: write data register `reg & 31` (gte.md §2).
+    #[inline]
     pub(crate) fn write_data(&mut self, reg: u32, value: u32) {
         match reg & 31 {
             r @ (0 | 2 | 4) => {
@@ -187,6 +191,7 @@ impl Registers {
     }
 
     /// CFC2: read control register `reg & 31` (gte.md §2).
+    #[inline]
     pub(crate) fn read_control(&self, reg: u32) -> u32 {
         match reg & 31 {
             r @ 0..=4 => read_matrix(&self.rt, r),
@@ -207,6 +212,7 @@ impl Registers {
     }
 
     /// CTC2: write control register `reg & 31` (gte.md §2).
+    #[inline]
     pub(crate) fn write_control(&mut self, reg: u32, value: u32) {
         match reg & 31 {
             r @ 0..=4 => write_matrix(&mut self.rt, r, value),
@@ -227,6 +233,7 @@ impl Registers {
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
+    #[inline]
     pub(crate) fn push_sxy(&mut self, value: u32) {
         self.sxy = [self.sxy[1], self.sxy[2], value];
     }

@@ -1,6 +1,6 @@
 //! A save state: the whole engine as the hardware holds it, read and restored without the
-//! side effects register writes have (gte.md §2: IRGB sets IR1-3, SXYP pushes the FIFO, LZCS
-//! sets LZCR, FLAG drops bits).
+//! side effects register writes have (docs/hardware/gte.md §2: IRGB sets IR1-3, SXYP pushes
+//! the FIFO, LZCS sets LZCR, FLAG drops bits).
 
 use crate::registers::Registers;
 use crate::unr::{DivideMode, UnsupportedDivideMode};

@@ -90,7 +90,7 @@ pub struct Projected {
 
 /// One projected vertex (RTPS) with its screen position before the integer truncation.
 ///
-/// `x`/`y` are the 16.16 values of gte.md §5 step 6 (`quotient * IR1 + OFX`, resp.
+/// `x`/`y` are the 16.16 values of docs/hardware/gte.md §5 step 6 (`quotient * IR1 + OFX`, resp.
 /// `quotient * IR2 + OFY`, from the divide mode in use), saturated to -400h..=3FFh.FFFFh: the
 /// range whose integer parts are the -400h..3FFh that SXY saturates to, with the fraction kept.
 /// So `x.floor()` is always `projected.x` (and likewise for y).
@@ -378,11 +378,12 @@ impl Geometry {
 
     /// RTPS with the sub-pixel screen position: one command, the same register effects and
     /// [`Projected`] as [`Geometry::project`], plus the 16.16 screen X/Y before the integer
-    /// truncation (gte.md §5 step 6), saturated as [`SubpixelProjected`] says.
+    /// truncation (docs/hardware/gte.md §5 step 6), saturated as [`SubpixelProjected`] says.
     pub fn project_subpixel(&mut self, v: Vector3) -> SubpixelProjected {
         let projected = self.project(v);
         let regs = self.gte.registers();
-        // The quotient RTPS used: H and the saturated SZ3 it pushed (gte.md §5 steps 4-5).
+        // The quotient RTPS used: H and the saturated SZ3 it pushed
+        // (docs/hardware/gte.md §5 steps 4-5).
         let (q, _) = crate::unr::divide(self.gte.divide_mode(), regs.h, projected.sz);
         let q = q as i64;
         let fine = |ir: i16, offset: i32| {

@@ -1,5 +1,5 @@
 //! Save states: `Gte::state` / `Gte::load_state` restore the engine exactly, without the side
-//! effects of register writes (gte.md §2), and (with `serde`) survive serialization.
+//! effects of register writes (docs/hardware/gte.md §2), and (with `serde`) survive serialization.
 
 use gte::{DivideMode, Flag, Gte, GteState, Registers, StateError};
 use proptest::prelude::*;

@@ -333,8 +333,8 @@ fn on_screen_setup() -> impl Strategy<Value = Setup> {
         })
 }
 
-/// Screen X/Y before truncation, computed from the fact sheet in i128 (gte.md §5 steps 1-6,
-/// sf = 1, lm = 0): the 44-bit accumulator wraps modulo 2^44, IRn saturates MACn to 16 bits,
+/// Screen X/Y before truncation, computed from the fact sheet in i128
+/// (docs/hardware/gte.md §5 steps 1-6, sf = 1, lm = 0): the 44-bit accumulator wraps modulo 2^44, IRn saturates MACn to 16 bits,
 /// SZ3 saturates acc3 SAR 12 to 0..FFFFh, and the sum quotient * IRn + OFn is clamped to the
 /// screen range. `quotient` is the divide of H by SZ3.
 fn subpixel_by_hand(s: &Setup, v: Vector3, quotient: impl Fn(u16, u16) -> u32) -> (i128, i128) {
@@ -359,7 +359,7 @@ fn subpixel_by_hand(s: &Setup, v: Vector3, quotient: impl Fn(u16, u16) -> u32) -
 }
 
 /// round(H * 10000h / SZ3) with the overflow rule H >= 2 * SZ3 and the 1FFFFh clamp
-/// (gte.md §6), in i128.
+/// (docs/hardware/gte.md §6), in i128.
 fn exact_quotient(h: u16, sz3: u16) -> u32 {
     let (h, sz3) = (h as i128, sz3 as i128);
     if h >= 2 * sz3 {
@@ -407,7 +407,7 @@ proptest! {
 #[test]
 fn subpixel_on_axis_keeps_the_offset_fraction() {
     // A vertex on the optical axis: IR1 = IR2 = 0, so the screen position is OFX/OFY exactly
-    // (gte.md §5 step 6), fraction included, while SXY holds the integer parts.
+    // (docs/hardware/gte.md §5 step 6), fraction included, while SXY holds the integer parts.
     let mut g = Geometry::new();
     g.set_rotation(&Matrix::IDENTITY);
     g.set_translation(Translation {

@@ -1,7 +1,7 @@
 //! Line rasterization (gpu.md §4): both endpoints drawn, 32.32 positions with a half-pixel
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
-use super::{Coverage, PixelEnv, TEX_NONE, line_coverage, shade_pixel, wrap11};
+use super::{Coverage, DrawCount, PixelEnv, TEX_NONE, line_coverage, shade_pixel, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Line;
 use crate::state::DrawState;
@@ -23,7 +23,7 @@ pub(super) fn draw<
     state: &DrawState,
     env_ref: &PixelEnv,
     line: &Line,
-) {
+) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
     let [mut p0, mut p1] = line.vertices;
@@ -32,7 +32,7 @@ pub(super) fn draw<
     p1.x = wrap11(p1.x);
     p1.y = wrap11(p1.y);
     if let Coverage::Dropped(_) = line_coverage([(p0.x, p0.y), (p1.x, p1.y)], &state.area) {
-        return;
+        return DrawCount::default();
     }
     if !GOURAUD {
         // A flat line has the command colour: the first vertex's, before any swap.
@@ -93,5 +93,10 @@ pub(super) fn draw<
                 color[i] = color[i].wrapping_add(color_step[i]);
             }
         }
+    }
+    DrawCount {
+        rows: 0,
+        pixels: k as u32 + 1,
+        pairs: 0,
     }
 }

@@ -15,6 +15,29 @@ use crate::state::{BlendMode, DrawState, DrawingArea, TextureDepth};
 use crate::texture::{ClutCache, Sampler};
 use crate::{VRAM_LEN, Vram};
 
+/// What a primitive drew after clipping, counted once per span (never per pixel), for the
+/// drawing-time model (docs/emulator.md, "Drawing time, FIFO and DMA").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DrawCount {
+    /// Rows with at least one pixel (lines: 0).
+    pub rows: u32,
+    /// Pixels drawn (lines: points stepped through, drawn or clipped).
+    pub pixels: u32,
+    /// Pixel pairs the spans touch, counted on even-aligned pairs: what a read-modify-write
+    /// span (blending or mask check) reads from VRAM.
+    pub pairs: u32,
+}
+
+impl DrawCount {
+    /// Count one span `[x_start, x_end)`, `x_start < x_end`.
+    #[inline(always)]
+    pub(crate) fn span(&mut self, x_start: i32, x_end: i32) {
+        self.rows += 1;
+        self.pixels += (x_end - x_start) as u32;
+        self.pairs += ((((x_end + 1) & !1) - (x_start & !1)) >> 1) as u32;
+    }
+}
+
 /// Texture kind as a const parameter: none, 4-bit, 8-bit or 15-bit.
 pub(crate) const TEX_NONE: u8 = 0;
 
@@ -329,10 +352,15 @@ fn env<'a>(
 }
 
 /// Draw one triangle (gpu.md §3): size drop, fill rule, attribute stepping, texture,
-/// blending, dithering, mask.
-pub fn draw_triangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, tri: &Triangle) {
+/// blending, dithering, mask. Returns what was drawn.
+pub fn draw_triangle(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    tri: &Triangle,
+) -> DrawCount {
     let Some(vram) = vram_array(vram) else {
-        return;
+        return DrawCount::default();
     };
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
@@ -377,10 +405,10 @@ pub fn draw_triangle_precise(
     }
 }
 
-/// Draw one line segment, both endpoints included (gpu.md §4).
-pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
+/// Draw one line segment, both endpoints included (gpu.md §4). Returns the points stepped.
+pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
     let Some(vram) = vram_array(vram) else {
-        return;
+        return DrawCount::default();
     };
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
@@ -397,10 +425,15 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) {
     dispatch!(draw(vram, state, &env, line); []; g, b, d, m)
 }
 
-/// Draw one rectangle (gpu.md §5).
-pub fn draw_rectangle(vram: &mut Vram, state: &DrawState, clut: &mut ClutCache, rect: &Rectangle) {
+/// Draw one rectangle (gpu.md §5). Returns what was drawn.
+pub fn draw_rectangle(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    rect: &Rectangle,
+) -> DrawCount {
     let Some(vram) = vram_array(vram) else {
-        return;
+        return DrawCount::default();
     };
     let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);

@@ -1,7 +1,7 @@
 //! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
 //! wrapped at 256 (decremented when flipped), clipped to the drawing area.
 
-use super::{PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
 use crate::state::{DrawState, DrawingArea};
@@ -25,13 +25,21 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
-) {
+) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
     let o = rect.origin;
     let (x0, y0) = (wrap11(o.x), wrap11(o.y));
     let Some((x_start, x_end, y_start, y_end)) = clip(rect, &state.area) else {
-        return;
+        return DrawCount::default();
+    };
+    let mut row_count = DrawCount::default();
+    row_count.span(x_start, x_end);
+    let rows = (y_end - y_start) as u32;
+    let drawn = DrawCount {
+        rows,
+        pixels: row_count.pixels * rows,
+        pairs: row_count.pairs * rows,
     };
     let flat = o.color.map(|c| c as i32);
     // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
@@ -60,4 +68,5 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             u = u.wrapping_add(du);
         }
     }
+    drawn
 }

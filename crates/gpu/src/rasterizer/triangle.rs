@@ -2,7 +2,7 @@
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
-use super::{Coverage, PixelEnv, TEX_NONE, shade_pixel, triangle_coverage, wrap11};
+use super::{Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, triangle_coverage, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
@@ -47,7 +47,8 @@ pub(super) fn draw<
     state: &DrawState,
     env: &PixelEnv,
     tri: &Triangle,
-) {
+) -> DrawCount {
+    let mut drawn = DrawCount::default();
     let mut v = tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
@@ -62,7 +63,7 @@ pub(super) fn draw<
     // Size drop, zero area, clipped away (gpu.md §3.2, §3.6).
     let corners = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
     if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
-        return;
+        return drawn;
     }
     // Core vertex from X before sorting (gpu.md §3.3).
     let mut core = if v[1].x <= v[0].x {
@@ -84,11 +85,11 @@ pub(super) fn draw<
     }
     let (a, b, c) = (v[0], v[1], v[2]);
     if a.y == c.y {
-        return;
+        return drawn;
     }
     let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
     if den == 0 {
-        return;
+        return drawn;
     }
     // Attribute set-up: 0-2 colour, 3-4 UV.
     let mut grads = [(0u32, 0u32); 5];
@@ -133,6 +134,7 @@ pub(super) fn draw<
         if x_start >= x_end {
             return;
         }
+        drawn.span(x_start, x_end);
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
             super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
@@ -213,4 +215,5 @@ pub(super) fn draw<
             span(y, base_at(y), bound + (y - b.y) as i64 * lower_step);
         }
     }
+    drawn
 }

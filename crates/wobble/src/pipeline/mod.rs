@@ -95,6 +95,8 @@ pub enum RenderError {
     Vram(VramAllocError),
     /// The scene is inconsistent.
     Scene(InvalidScene),
+    /// An accuracy knob this build does not include (built without `accuracy-knobs`).
+    Unsupported(gte::UnsupportedDivideMode),
 }
 
 impl fmt::Display for RenderError {
@@ -102,6 +104,7 @@ impl fmt::Display for RenderError {
         match self {
             RenderError::Vram(e) => write!(f, "{e}"),
             RenderError::Scene(e) => write!(f, "{e}"),
+            RenderError::Unsupported(e) => write!(f, "{e}"),
         }
     }
 }
@@ -111,6 +114,7 @@ impl std::error::Error for RenderError {
         match self {
             RenderError::Vram(e) => Some(e),
             RenderError::Scene(e) => Some(e),
+            RenderError::Unsupported(e) => Some(e),
         }
     }
 }
@@ -257,7 +261,9 @@ impl Renderer {
             color_24bit: false,
         };
         let mut geometry = Geometry::new();
-        geometry.set_divide_mode(options.divide_mode);
+        geometry
+            .set_divide_mode(options.divide_mode)
+            .map_err(RenderError::Unsupported)?;
         Ok(Renderer {
             ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
             scratch: Vec::with_capacity(capacity),

@@ -249,7 +249,10 @@ pub fn vertex_jitter(scene: &Scene, mode: DivideMode, subpixel: bool, frames: u3
     let (w, h) = (scene.screen.width as f64, scene.screen.height as f64);
     let hp = scene.camera.h as f64;
     let mut g = Geometry::new();
-    g.set_divide_mode(mode);
+    if g.set_divide_mode(mode).is_err() {
+        // A build without the knob cannot run this mode: NaN marks it as not measured.
+        return f64::NAN;
+    }
     g.set_projection(&Projection {
         offset_x: I16F16::from_num(scene.screen.width / 2),
         offset_y: I16F16::from_num(scene.screen.height / 2),

@@ -1,0 +1,284 @@
+//! DMA channel 2 (GPU) in block and linked-list mode, and channel 6 (OTC), over the
+//! emulator's main RAM (docs/hardware/dma.md; docs/emulator.md, "Drawing time, FIFO and
+//! DMA").
+//!
+//! Main RAM is given as bytes, little-endian words. Addresses are 24-bit MADR values; RAM is
+//! the 2 MiB that the first 8 MiB mirror, so an address selects byte `addr & 1FFFFCh`
+//! (docs/hardware/dma.md §2).
+
+use core::fmt;
+
+use crate::Gpu;
+use crate::drawing::FIFO_WORDS;
+
+/// Main RAM size: addresses wrap at 2 MiB.
+pub const RAM_SIZE: usize = 2 * 1024 * 1024;
+/// The word-aligned address mask of 2 MiB main RAM.
+pub const RAM_MASK: u32 = 0x1F_FFFC;
+/// Header and data words one [`Gpu::dma_linked_list`] call reads at most before it pauses
+/// and reports where to resume: a list that loops forever (which the console keeps walking,
+/// docs/hardware/dma.md §6) cannot hang the caller.
+pub const LINKED_LIST_WORD_BUDGET: u32 = 0x1_0000;
+
+/// Why a DMA could not run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DmaError {
+    /// An address falls outside the RAM slice given (only possible when it is shorter than
+    /// 2 MiB).
+    AddressOutOfRange(u32),
+    /// An OTC word count above 10000h (the 16-bit BCR holds at most FFFFh, and 0 means
+    /// 10000h).
+    CountTooLarge(u32),
+}
+
+impl fmt::Display for DmaError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DmaError::AddressOutOfRange(a) => write!(f, "address {a:06X}h is outside RAM"),
+            DmaError::CountTooLarge(n) => write!(f, "OTC count {n} exceeds 65536 words"),
+        }
+    }
+}
+
+impl core::error::Error for DmaError {}
+
+/// How a linked-list walk ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ListEnd {
+    /// A node whose link has bit 23 set (the end code; OTC writes 00FFFFFFh).
+    EndMarker,
+    /// The word budget ran out; the list continues at this node address (a list that loops
+    /// forever always ends here). The console would still be transferring.
+    Paused {
+        /// Address of the next node header.
+        next: u32,
+    },
+    /// A header or data word lies outside the RAM slice given.
+    BadAddress(u32),
+}
+
+/// What a linked-list DMA delivered and how long it took.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LinkedListReport {
+    /// Nodes whose header was read.
+    pub nodes: u32,
+    /// GP0 words delivered.
+    pub words: u32,
+    /// CPU cycles the transfer took: a cycle per header and data word plus the time spent
+    /// waiting for FIFO room.
+    pub cycles: u32,
+    /// CPU cycles of `cycles` spent waiting for FIFO room.
+    pub wait_cycles: u32,
+    /// How the walk ended.
+    pub end: ListEnd,
+}
+
+/// Memory a linked list is read from, addressed by 24-bit byte address.
+pub(crate) trait ListMemory {
+    /// The word at `addr`, or `None` outside the memory.
+    fn word(&self, addr: u32) -> Option<u32>;
+    /// The address of the `i`-th word after `addr` (wrapping as the memory does).
+    fn offset(&self, addr: u32, i: u32) -> u32;
+}
+
+/// Main RAM as bytes: addresses mirror every 2 MiB.
+pub(crate) struct ByteRam<'a>(pub &'a [u8]);
+
+impl ListMemory for ByteRam<'_> {
+    fn word(&self, addr: u32) -> Option<u32> {
+        let i = (addr & RAM_MASK) as usize;
+        let b = self.0.get(i..i + 4)?;
+        Some(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+    fn offset(&self, addr: u32, i: u32) -> u32 {
+        addr.wrapping_add(i.wrapping_mul(4)) & RAM_MASK
+    }
+}
+
+/// A word image of memory (byte address = 4 * index), no mirroring.
+pub(crate) struct WordImage<'a>(pub &'a [u32]);
+
+impl ListMemory for WordImage<'_> {
+    fn word(&self, addr: u32) -> Option<u32> {
+        self.0.get((addr / 4) as usize).copied()
+    }
+    fn offset(&self, addr: u32, i: u32) -> u32 {
+        addr.wrapping_add(i.wrapping_mul(4)) & 0xFF_FFFF
+    }
+}
+
+/// How [`walk_nodes`] stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum WalkEnd {
+    /// The end code.
+    EndMarker,
+    /// `node_limit` nodes were read, or the visitor asked to stop; the next node is here.
+    Stopped(u32),
+    /// A header, or a node's data, lies outside memory (the node's header address).
+    BadLink(u32),
+}
+
+/// Walk a DMA2 linked list (docs/hardware/dma.md §5, §6; docs/emulator.md):
+/// from `start`, read a header `N << 24 | next`, hand the node (its header address and N) to
+/// `visit`, and follow `next` until a link with bit 23 set. At most `node_limit` headers are
+/// read; `visit` returns false to stop after its node. Returns how it ended and the nodes
+/// read.
+pub(crate) fn walk_nodes<M: ListMemory>(
+    mem: &M,
+    start: u32,
+    node_limit: usize,
+    mut visit: impl FnMut(u32, u32) -> bool,
+) -> (WalkEnd, usize) {
+    let mut addr = start & 0xFF_FFFC;
+    let mut nodes = 0usize;
+    loop {
+        if nodes >= node_limit {
+            return (WalkEnd::Stopped(addr), nodes);
+        }
+        let Some(header) = mem.word(addr) else {
+            return (WalkEnd::BadLink(addr), nodes);
+        };
+        let count = header >> 24;
+        if (1..=count).any(|i| mem.word(mem.offset(addr, i)).is_none()) {
+            return (WalkEnd::BadLink(addr), nodes);
+        }
+        nodes += 1;
+        let go_on = visit(addr, count);
+        let next = header & 0xFF_FFFF;
+        if next & 0x80_0000 != 0 {
+            return (WalkEnd::EndMarker, nodes);
+        }
+        if !go_on {
+            return (WalkEnd::Stopped(next & 0xFF_FFFC), nodes);
+        }
+        addr = next & 0xFF_FFFC;
+    }
+}
+
+/// CPU cycles a DMA moving `words` words takes: one per word plus one per 16 for DRAM row
+/// changes (110h clocks per 100h words, docs/hardware/dma.md §10).
+fn transfer_cycles(words: u32) -> u32 {
+    words.saturating_add(words / 16)
+}
+
+/// GPU cycles to CPU cycles, rounded up, at the NTSC clock ratio (53 693 175 Hz GPU,
+/// 33 868 800 Hz CPU).
+fn gpu_to_cpu_cycles(gpu: u32) -> u32 {
+    let cpu = (gpu as u64 * 33_868_800).div_ceil(53_693_175);
+    u32::try_from(cpu).unwrap_or(u32::MAX)
+}
+
+/// DMA6 (OTC): clear an ordering table of `count` words ending at `start` (docs/hardware/
+/// dma.md §7): the word at `start` links to the word before it, and so on down; the lowest
+/// word gets the end code 00FFFFFFh. Links are 24-bit addresses. A count of 0 means 10000h
+/// words. Addresses that wrap below 0 (to FFFFFCh and down, past RAM) are not written
+/// (docs/hardware/dma.md §2; psx-spx "D#_MADR"). Returns the CPU cycles taken (one per word, 110h per
+/// 100h). Nothing is written when an address lies outside `ram`.
+pub fn dma_clear_ordering_table(ram: &mut [u8], start: u32, count: u32) -> Result<u32, DmaError> {
+    let n = match count {
+        0 => 0x1_0000,
+        1..=0x1_0000 => count,
+        _ => return Err(DmaError::CountTooLarge(count)),
+    };
+    let start = start & 0xFF_FFFC;
+    let at = |i: u32| start.wrapping_sub(i * 4) & 0xFF_FFFF;
+    let written = |a: u32| a < 0x80_0000;
+    for i in 0..n {
+        let a = at(i);
+        if written(a) && (a & RAM_MASK) as usize + 4 > ram.len() {
+            return Err(DmaError::AddressOutOfRange(a));
+        }
+    }
+    for i in 0..n {
+        let a = at(i);
+        if !written(a) {
+            continue;
+        }
+        let value = if i + 1 == n {
+            0x00FF_FFFF
+        } else {
+            a.wrapping_sub(4) & 0xFF_FFFF
+        };
+        let j = (a & RAM_MASK) as usize;
+        if let Some(b) = ram.get_mut(j..j + 4) {
+            b.copy_from_slice(&value.to_le_bytes());
+        }
+    }
+    Ok(transfer_cycles(n))
+}
+
+impl Gpu {
+    /// One GP0 word from DMA: waits (running the drawing side ahead) while the FIFO is full.
+    /// Returns the GPU cycles waited.
+    fn dma_word(&mut self, word: u32) -> u32 {
+        let mut waited = 0u32;
+        if self.drawing.fifo_words() >= FIFO_WORDS {
+            let wait = self.drawing.cycles_until_room();
+            self.drawing.run_ahead(wait);
+            waited = wait;
+        }
+        self.gp0(word);
+        waited
+    }
+
+    /// DMA2 block (sync) mode, RAM to GP0 (docs/hardware/dma.md §4): the words go to GP0 in
+    /// order. Returns the CPU cycles taken: one per word (110h per 100h words) plus the time
+    /// spent waiting while the FIFO is full. The drawing time spent waiting has already
+    /// passed on the GPU side: the caller runs the returned cycles through [`Gpu::run`] as
+    /// usual and they are not counted twice.
+    pub fn dma_block_write(&mut self, words: &[u32]) -> u32 {
+        let mut waited = 0u32;
+        for &w in words {
+            waited = waited.saturating_add(self.dma_word(w));
+        }
+        let n = u32::try_from(words.len()).unwrap_or(u32::MAX);
+        transfer_cycles(n).saturating_add(gpu_to_cpu_cycles(waited))
+    }
+
+    /// DMA2 block (sync) mode, GPUREAD to RAM: each word is a [`Gpu::gpuread`] (VRAM data
+    /// of a GP0(C0h) transfer, or the latched value once it is done). Returns the CPU cycles
+    /// taken (110h per 100h words).
+    pub fn dma_block_read(&mut self, out: &mut [u32]) -> u32 {
+        for w in out.iter_mut() {
+            *w = self.gpuread();
+        }
+        transfer_cycles(u32::try_from(out.len()).unwrap_or(u32::MAX))
+    }
+
+    /// DMA2 linked-list mode (docs/hardware/dma.md §5, §6): walk the list in
+    /// `ram` (bytes, little-endian words, addresses masked to 2 MiB) from node address
+    /// `start`, giving each node's words to GP0, until a link with bit 23 set. Waits while
+    /// the FIFO is full as [`Gpu::dma_block_write`] does. At most
+    /// [`LINKED_LIST_WORD_BUDGET`] header and data words are read per call; a longer (or
+    /// looping) list pauses with [`ListEnd::Paused`] and can be resumed from `next`. A
+    /// header or data word beyond a `ram` shorter than 2 MiB ends the walk with
+    /// [`ListEnd::BadAddress`] before that node's words are sent.
+    pub fn dma_linked_list(&mut self, ram: &[u8], start: u32) -> LinkedListReport {
+        let mem = ByteRam(ram);
+        let mut words = 0u32;
+        let mut read = 0u32;
+        let mut waited = 0u32;
+        let (end, nodes) = walk_nodes(&mem, start, usize::MAX, |addr, count| {
+            for i in 1..=count {
+                let w = mem.word(mem.offset(addr, i)).unwrap_or(0);
+                waited = waited.saturating_add(self.dma_word(w));
+            }
+            words += count;
+            read += 1 + count;
+            read < LINKED_LIST_WORD_BUDGET
+        });
+        let end = match end {
+            WalkEnd::EndMarker => ListEnd::EndMarker,
+            WalkEnd::Stopped(next) => ListEnd::Paused { next },
+            WalkEnd::BadLink(a) => ListEnd::BadAddress(a),
+        };
+        let wait_cycles = gpu_to_cpu_cycles(waited);
+        LinkedListReport {
+            nodes: u32::try_from(nodes).unwrap_or(u32::MAX),
+            words,
+            cycles: transfer_cycles(read).saturating_add(wait_cycles),
+            wait_cycles,
+            end,
+        }
+    }
+}

@@ -1,0 +1,258 @@
+//! GTE commands as an emulator drives them: per call, the inputs are written with MTC2 (and the
+//! command word issued) on an evolving register state, and the results and FLAG read back with
+//! MFC2/CFC2. Register indices and command words pass through `black_box`, as a CPU decoder
+//! produces them at run time. Compare with the `commands` bench (`execute` alone).
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use gte::{Command, Gte, MatrixSel, Opcode, TranslationSel, VectorSel};
+use std::hint::black_box;
+
+/// A typical set-up: rotation, translation in front of the camera, projection, lights,
+/// colours (values a PS1 program loads with CTC2).
+fn loaded() -> Gte {
+    let mut gte = Gte::new();
+    let ctrl: [(u32, u32); 26] = [
+        (0, 0x0F00_0100),
+        (1, 0xFF00_0080),
+        (2, 0x0080_0F00),
+        (3, 0x00C0_FF40),
+        (4, 0x0F80),
+        (5, 10),
+        (6, (-20i32) as u32),
+        (7, 2000),
+        (8, 0x0800_0B00),
+        (9, 0xF800_0400),
+        (10, 0x0C00_0200),
+        (11, 0x0300_F900),
+        (12, 0x0A00),
+        (13, 400),
+        (14, 400),
+        (15, 400),
+        (16, 0x0000_1000),
+        (18, 0x0000_1000),
+        (20, 0x1000),
+        (21, 0x100),
+        (22, 0x80),
+        (23, 0x40),
+        (24, 160 << 16),
+        (25, 120 << 16),
+        (26, 320),
+        (27, (-0x100i32) as u32),
+    ];
+    for (r, v) in ctrl {
+        gte.write_control(r, v);
+    }
+    gte.write_control(28, 0x0140_0000);
+    gte.write_control(29, 0x1000 / 3);
+    gte.write_control(30, 0x1000 / 4);
+    gte
+}
+
+/// A fixed pseudo-random sequence (xorshift), so every run sees the same inputs.
+fn inputs(n: usize) -> Vec<u32> {
+    let mut x = 0x2545_F491u32;
+    (0..n)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 17;
+            x ^= x << 5;
+            x
+        })
+        .collect()
+}
+
+/// Pack two 16-bit halves.
+fn xy(lo: i32, hi: i32) -> u32 {
+    (lo as u16 as u32) | ((hi as u16 as u32) << 16)
+}
+
+/// A vertex in -1024..1023 from random bits: (VXY, VZ).
+fn vertex(r: u32) -> (u32, u32) {
+    let c = |s: u32| ((r >> s) & 0x7FF) as i32 - 1024;
+    (xy(c(0), c(11)), c(22) as u32)
+}
+
+fn word(op: Opcode, lm: bool) -> u32 {
+    Command::build(
+        op,
+        true,
+        lm,
+        MatrixSel::Rotation,
+        VectorSel::V0,
+        TranslationSel::Translation,
+    )
+    .word()
+}
+
+/// Benchmark `op`: per call `writes` (MTC2s from a random word), the command, then MFC2 of
+/// `reads` and CFC2 of FLAG.
+fn run<W: Fn(&mut Gte, u32)>(
+    c: &mut Criterion,
+    name: &str,
+    op: Opcode,
+    lm: bool,
+    writes: W,
+    reads: &[u32],
+) {
+    let random = inputs(1024);
+    let cmd = word(op, lm);
+    let mut gte = loaded();
+    let mut i = 0usize;
+    c.bench_function(name, |b| {
+        b.iter(|| {
+            let r = random[i & 1023];
+            i = i.wrapping_add(1);
+            writes(&mut gte, r);
+            let mut acc = gte.execute(black_box(cmd)).unwrap_or(0);
+            for &reg in reads {
+                acc = acc.wrapping_add(gte.read_data(black_box(reg)));
+            }
+            acc.wrapping_add(gte.read_control(black_box(31)))
+        })
+    });
+}
+
+fn mtc2(gte: &mut Gte, reg: u32, value: u32) {
+    gte.write_data(black_box(reg), value);
+}
+
+fn emulator(c: &mut Criterion) {
+    run(
+        c,
+        "emulator/RTPS",
+        Opcode::Rtps,
+        false,
+        |g, r| {
+            let (v, z) = vertex(r);
+            mtc2(g, 0, v);
+            mtc2(g, 1, z);
+        },
+        &[14, 19, 8],
+    );
+    run(
+        c,
+        "emulator/RTPT",
+        Opcode::Rtpt,
+        false,
+        |g, r| {
+            for k in 0..3 {
+                let (v, z) = vertex(r.rotate_left(k * 11));
+                mtc2(g, 2 * k, v);
+                mtc2(g, 2 * k + 1, z);
+            }
+        },
+        &[12, 13, 14, 17, 18, 19, 8],
+    );
+    run(
+        c,
+        "emulator/NCLIP",
+        Opcode::Nclip,
+        false,
+        |g, r| {
+            for k in 0..3 {
+                let s = r.rotate_left(k * 10);
+                mtc2(
+                    g,
+                    12 + k,
+                    xy((s & 0x3FF) as i32 - 512, ((s >> 10) & 0x1FF) as i32 - 256),
+                );
+            }
+        },
+        &[24],
+    );
+    run(
+        c,
+        "emulator/NCDS",
+        Opcode::Ncds,
+        true,
+        |g, r| {
+            let (v, z) = vertex(r);
+            mtc2(g, 0, v);
+            mtc2(g, 1, z);
+            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
+            mtc2(g, 8, r >> 20);
+        },
+        &[22],
+    );
+    run(
+        c,
+        "emulator/NCDT",
+        Opcode::Ncdt,
+        true,
+        |g, r| {
+            for k in 0..3 {
+                let (v, z) = vertex(r.rotate_left(k * 11));
+                mtc2(g, 2 * k, v);
+                mtc2(g, 2 * k + 1, z);
+            }
+            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
+        },
+        &[20, 21, 22],
+    );
+    run(
+        c,
+        "emulator/NCCT",
+        Opcode::Ncct,
+        true,
+        |g, r| {
+            for k in 0..3 {
+                let (v, z) = vertex(r.rotate_left(k * 11));
+                mtc2(g, 2 * k, v);
+                mtc2(g, 2 * k + 1, z);
+            }
+            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
+        },
+        &[20, 21, 22],
+    );
+    run(
+        c,
+        "emulator/MVMVA",
+        Opcode::Mvmva,
+        false,
+        |g, r| {
+            let (v, z) = vertex(r);
+            mtc2(g, 0, v);
+            mtc2(g, 1, z);
+        },
+        &[25, 26, 27, 9, 10, 11],
+    );
+    run(
+        c,
+        "emulator/AVSZ3",
+        Opcode::Avsz3,
+        false,
+        |g, r| {
+            mtc2(g, 17, r & 0xFFFF);
+            mtc2(g, 18, r >> 16);
+            mtc2(g, 19, r.rotate_left(8) & 0xFFFF);
+        },
+        &[7],
+    );
+    run(
+        c,
+        "emulator/DPCS",
+        Opcode::Dpcs,
+        false,
+        |g, r| {
+            mtc2(g, 6, 0x3000_0000 | (r & 0xFF_FFFF));
+            mtc2(g, 8, r >> 19);
+        },
+        &[22],
+    );
+    run(
+        c,
+        "emulator/GPF",
+        Opcode::Gpf,
+        false,
+        |g, r| {
+            mtc2(g, 8, r >> 19);
+            mtc2(g, 9, r & 0x7FFF);
+            mtc2(g, 10, (r >> 8) & 0x7FFF);
+            mtc2(g, 11, (r >> 16) & 0x7FFF);
+        },
+        &[22],
+    );
+}
+
+criterion_group!(benches, emulator);
+criterion_main!(benches);
