@@ -2,6 +2,9 @@
 //! command, its pixel counts add up with the final VRAM, and the last-writer map agrees with
 //! an independent per-line VRAM comparison.
 
+// Pixel loops index several parallel per-pixel tables by the same index.
+#![allow(clippy::needless_range_loop)]
+
 use gpu::command_stream::{self, Port};
 use gpu::{Gpu, VRAM_LEN};
 use serde_json::Value;
