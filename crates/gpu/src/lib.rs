@@ -12,6 +12,7 @@ extern crate alloc;
 
 pub mod color;
 pub mod command_stream;
+pub mod decode;
 mod display;
 mod dma;
 mod drawing;

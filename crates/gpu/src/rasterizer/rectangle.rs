@@ -5,8 +5,20 @@
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
-use crate::state::DrawState;
+use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
+
+/// The drawn columns `[x_start, x_end)` and rows `[y_start, y_end)`: the rectangle at its
+/// wrapped origin clipped to the drawing area (gpu.md §5); `None` when nothing is left.
+#[inline(always)]
+pub(super) fn clip(rect: &Rectangle, area: &DrawingArea) -> Option<(i32, i32, i32, i32)> {
+    let (x0, y0) = (wrap11(rect.origin.x), wrap11(rect.origin.y));
+    let x_start = x0.max(area.left as i32);
+    let x_end = (x0 + rect.width as i32).min(area.right as i32 + 1);
+    let y_start = y0.max(area.top as i32);
+    let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
+    (x_start < x_end && y_start < y_end).then_some((x_start, x_end, y_start, y_end))
+}
 
 /// Draw with the pixel pipeline fixed by the const parameters.
 pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
@@ -20,14 +32,9 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     let env = *env_ref;
     let o = rect.origin;
     let (x0, y0) = (wrap11(o.x), wrap11(o.y));
-    let area = state.area;
-    let x_start = x0.max(area.left as i32);
-    let x_end = (x0 + rect.width as i32).min(area.right as i32 + 1);
-    let y_start = y0.max(area.top as i32);
-    let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
-    if x_start >= x_end || y_start >= y_end {
+    let Some((x_start, x_end, y_start, y_end)) = clip(rect, &state.area) else {
         return DrawCount::default();
-    }
+    };
     let mut row_count = DrawCount::default();
     row_count.span(x_start, x_end);
     let rows = filter.count(y_start, y_end);

@@ -2,7 +2,7 @@
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
-use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use super::{Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, triangle_coverage, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
@@ -61,11 +61,10 @@ pub(super) fn draw<
             p.v as i32,
         ],
     });
-    // Size drop (gpu.md §3.2).
-    for (i, j) in [(0, 1), (1, 2), (0, 2)] {
-        if (v[i].x - v[j].x).abs() >= 1024 || (v[i].y - v[j].y).abs() >= 512 {
-            return drawn;
-        }
+    // Size drop, zero area, clipped away (gpu.md §3.2, §3.6).
+    let corners = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
+    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
+        return drawn;
     }
     // Core vertex from X before sorting (gpu.md §3.3).
     let mut core = if v[1].x <= v[0].x {

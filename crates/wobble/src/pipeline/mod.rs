@@ -13,8 +13,10 @@ mod gte_stage;
 pub mod object;
 mod ot_stage;
 pub mod tessellate;
+mod trace;
 
 pub use object::{angle, object_rotation, object_transform, prepare};
+pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
@@ -174,6 +176,8 @@ pub struct Renderer {
     /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
     /// filled only when the precise path is on, so the hardware path carries none of it.
     precise_vertices: Vec<[PreciseVertex; 4]>,
+    /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
+    trace: Option<Box<trace::TraceSink>>,
 }
 
 impl Renderer {
@@ -278,6 +282,7 @@ impl Renderer {
             display,
             clut: ClutCache::default(),
             precise_vertices: Vec::new(),
+            trace: None,
         })
     }
 
