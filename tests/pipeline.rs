@@ -3,9 +3,9 @@
 //! the default scene's determinism and golden image.
 
 use gpu::Gpu;
-use wobble::mesh::{Mesh, MeshFace, MeshVertex};
 use wobble::pipeline::{PipelineOptions, Renderer};
-use wobble::quantize::{Depth, Texture};
+use wobble::scene::mesh::{Mesh, MeshFace, MeshVertex};
+use wobble::scene::texture::{Depth, Texture};
 use wobble::scene::{Camera, MeshAsset, Object, Scene, Screen, TextureAsset};
 
 /// A unit square in the XY plane facing -Z (towards a camera at the origin looking +Z),
@@ -476,7 +476,7 @@ mod properties {
             height in 1u16..=240,
             textures in prop::collection::vec((0u8..3, 1u16..=256, 1u16..=256), 1..24),
         ) {
-            let mut alloc = wobble::vram_alloc::VramAllocator::new(width, height);
+            let mut alloc = wobble::scene::vram_alloc::VramAllocator::new(width, height);
             // Rectangles (x, y, w, h) in halfwords.
             let mut used = vec![(0u32, 0u32, u32::from(width), 2 * u32::from(height))];
             for (i, &(d, w, h)) in textures.iter().enumerate() {

@@ -3,7 +3,26 @@
 
 /// A set of FLAG bits. Bits 0-11 are always zero; bit 31 is the OR of bits 30-23 and 18-13.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(from = "u32", into = "u32")
+)]
 pub struct Flag(u32);
+
+impl From<u32> for Flag {
+    /// As [`Flag::from_bits`]: the value a CTC2 write of `bits` leaves in FLAG.
+    fn from(bits: u32) -> Flag {
+        Flag::from_bits(bits)
+    }
+}
+
+impl From<Flag> for u32 {
+    /// The raw register value, as CFC2 reads it.
+    fn from(flag: Flag) -> u32 {
+        flag.bits()
+    }
+}
 
 impl Flag {
     /// No bit set.

@@ -1,27 +1,61 @@
 //! PlayStation GTE (COP2): the geometry transformation engine, bit-exact in fixed point.
 //!
 //! Two faces: [`Gte`], the register-level engine an emulator drives (MTC2/MFC2/CTC2/CFC2 and
-//! the COP2 command word), and [`typed`], a fixed-point API for transforming and projecting
-//! vertices the PS1 way. The facts implemented are those of the GTE fact sheet (`gte.md`,
-//! cited by section); choices where hardware data is silent are listed in `docs/gte.md`.
-#![cfg_attr(not(feature = "std"), no_std)]
+//! the COP2 command word), and `typed` (feature `typed`, default), a fixed-point API for
+//! transforming and projecting vertices the PS1 way. The facts implemented are those of the
+//! GTE fact sheet (`gte.md`, cited by section); choices where hardware data is silent are
+//! listed in `docs/gte.md`.
+//!
+//! Features: `typed` (default) the typed API and its `fixed` dependency; `divide-modes`
+//! (default) the non-hardware divides [`DivideMode::Exact`] and [`DivideMode::F32`] in the
+//! engine (without it [`Gte::set_divide_mode`] refuses them); `serde` serialization of
+//! [`GteState`]. The crate is `no_std` and allocates nothing.
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
-pub mod command;
+mod command;
 mod commands;
-pub mod flag;
-pub mod mac;
-pub mod registers;
+mod flag;
+mod mac;
+mod registers;
+mod state;
+#[cfg(feature = "typed")]
 pub mod typed;
 pub mod unr;
 
-pub use command::{Command, Opcode, cycles};
+pub use command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel, cycles};
 pub use flag::Flag;
 pub use registers::{REGISTER_NAMES, Registers};
-pub use unr::DivideMode;
+pub use state::{GteState, StateError};
+pub use unr::{DivideMode, UnsupportedDivideMode};
 
 /// The GTE: register file and command engine.
 ///
-/// Register indices use their low 5 bits; command words their low 25 bits. No input panics.
+/// Register indices are `u32`, as a CPU decoder extracts the `rt`/`rd` fields; the data and
+/// control accessors use the low 5 bits, the 64-register [`Gte::read`]/[`Gte::write`] the low
+/// 6. Command words use their low 25 bits. No input panics.
+///
+/// An emulator's MTC2/CTC2, COP2 command and MFC2 for one RTPS (gte.md §2, §5):
+///
+/// ```
+/// let mut gte = gte::Gte::new();
+/// gte.write_control(0, 0x1000);     // CTC2 RT11 = 1.0, RT12 = 0
+/// gte.write_control(2, 0x1000);     // CTC2 RT22 = 1.0, RT23 = 0
+/// gte.write_control(4, 0x1000);     // CTC2 RT33 = 1.0
+/// gte.write_control(7, 1000);       // CTC2 TRZ = 1000
+/// gte.write_control(24, 160 << 16); // CTC2 OFX = 160.0
+/// gte.write_control(25, 120 << 16); // CTC2 OFY = 120.0
+/// gte.write_control(26, 1000);      // CTC2 H = 1000
+/// gte.write_data(0, (20 << 16) | 100); // MTC2 VXY0: X = 100, Y = 20
+/// gte.write_data(1, 0);                // MTC2 VZ0 = 0
+/// let cycles = gte.execute(0x0008_0001); // COP2 RTPS, sf = 1
+/// assert_eq!(cycles, Some(15));
+/// // SZ3 = 1000, quotient H / SZ3 = 1.0: screen X = 160 + 100, Y = 120 + 20.
+/// assert_eq!(gte.read_data(19), 1000); // MFC2 SZ3
+/// assert_eq!(gte.read_data(14), (140 << 16) | 260); // MFC2 SXY2
+/// assert!(gte.flag().is_empty()); // CFC2 FLAG
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Gte {
     regs: Registers,
@@ -36,28 +70,28 @@ impl Gte {
         Self::default()
     }
 
-    /// MTC2/LWC2: write data register `reg` (0..=31; higher bits of `reg` are ignored).
-    pub fn write_data(&mut self, reg: usize, value: u32) {
+    /// MTC2/LWC2: write data register `reg & 31` with its write rules (gte.md §2).
+    pub fn write_data(&mut self, reg: u32, value: u32) {
         self.regs.write_data(reg, value);
     }
 
-    /// MFC2/SWC2: read data register `reg` (0..=31; higher bits of `reg` are ignored).
-    pub fn read_data(&self, reg: usize) -> u32 {
+    /// MFC2/SWC2: read data register `reg & 31` with its read rules (gte.md §2).
+    pub fn read_data(&self, reg: u32) -> u32 {
         self.regs.read_data(reg)
     }
 
-    /// CTC2: write control register `reg` (0..=31; higher bits of `reg` are ignored).
-    pub fn write_control(&mut self, reg: usize, value: u32) {
+    /// CTC2: write control register `reg & 31` (gte.md §2).
+    pub fn write_control(&mut self, reg: u32, value: u32) {
         self.regs.write_control(reg, value);
     }
 
-    /// CFC2: read control register `reg` (0..=31; higher bits of `reg` are ignored).
-    pub fn read_control(&self, reg: usize) -> u32 {
+    /// CFC2: read control register `reg & 31` (gte.md §2).
+    pub fn read_control(&self, reg: u32) -> u32 {
         self.regs.read_control(reg)
     }
 
-    /// Read register `index` of the 64 (0..=31 data, 32..=63 control; higher bits ignored).
-    pub fn read(&self, index: usize) -> u32 {
+    /// Read register `index & 63` of the 64 (0..=31 data via MFC2, 32..=63 control via CFC2).
+    pub fn read(&self, index: u32) -> u32 {
         if index & 32 == 0 {
             self.read_data(index)
         } else {
@@ -65,8 +99,8 @@ impl Gte {
         }
     }
 
-    /// Write register `index` of the 64 (0..=31 data via MTC2, 32..=63 control via CTC2).
-    pub fn write(&mut self, index: usize, value: u32) {
+    /// Write register `index & 63` of the 64 (0..=31 data via MTC2, 32..=63 control via CTC2).
+    pub fn write(&mut self, index: u32, value: u32) {
         if index & 32 == 0 {
             self.write_data(index, value);
         } else {
@@ -79,9 +113,43 @@ impl Gte {
         self.regs.flag
     }
 
-    /// The register file, for inspection.
+    /// The register file as stored, for inspection.
     pub fn registers(&self) -> &Registers {
         &self.regs
+    }
+
+    /// The whole engine state (registers as stored and the divide mode), read without any
+    /// register read rule; [`Gte::load_state`] restores it exactly.
+    pub fn state(&self) -> GteState {
+        GteState {
+            version: GteState::VERSION,
+            registers: self.regs.clone(),
+            divide_mode: self.divide_mode,
+        }
+    }
+
+    /// Restore a state from [`Gte::state`]: every register takes the stored value, without the
+    /// side effects of MTC2/CTC2 (IRGB, SXYP, LZCS). FLAG keeps only what the hardware can hold
+    /// (bits 12-30 and their summary bit 31, as [`Flag::from_bits`]).
+    ///
+    /// Fails, changing nothing, for another [`GteState::VERSION`] or a divide mode this build
+    /// cannot run.
+    pub fn load_state(&mut self, state: &GteState) -> Result<(), StateError> {
+        if state.version != GteState::VERSION {
+            return Err(StateError::Version {
+                found: state.version,
+                expected: GteState::VERSION,
+            });
+        }
+        if !state.divide_mode.is_supported() {
+            return Err(StateError::DivideMode(UnsupportedDivideMode(
+                state.divide_mode,
+            )));
+        }
+        self.regs = state.registers.clone();
+        self.regs.flag = Flag::from_bits(self.regs.flag.bits());
+        self.divide_mode = state.divide_mode;
+        Ok(())
     }
 
     /// How RTPS/RTPT divide; [`DivideMode::Unr`] (the default) is the hardware.
@@ -89,9 +157,14 @@ impl Gte {
         self.divide_mode
     }
 
-    /// Select a divide; anything but [`DivideMode::Unr`] departs from the hardware.
-    pub fn set_divide_mode(&mut self, mode: DivideMode) {
+    /// Select a divide; anything but [`DivideMode::Unr`] departs from the hardware. Without
+    /// the `divide-modes` feature the other modes are refused and the mode stays as it was.
+    pub fn set_divide_mode(&mut self, mode: DivideMode) -> Result<(), UnsupportedDivideMode> {
+        if !mode.is_supported() {
+            return Err(UnsupportedDivideMode(mode));
+        }
         self.divide_mode = mode;
+        Ok(())
     }
 
     /// Run the 25-bit COP2 command word (bits above 24 are ignored). FLAG is cleared first

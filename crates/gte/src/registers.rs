@@ -4,7 +4,7 @@
 use crate::flag::Flag;
 
 /// A 3x3 matrix of signed 1.3.12 entries, row-major (`m[row][column]`).
-pub type Matrix = [[i16; 3]; 3];
+pub(crate) type Matrix = [[i16; 3]; 3];
 
 /// Register names as MFC2/CFC2 number them: data r0..r31 then control c0..c31 (64 entries).
 pub const REGISTER_NAMES: [&str; 64] = [
@@ -16,8 +16,11 @@ pub const REGISTER_NAMES: [&str; 64] = [
     "H", "DQA", "DQB", "ZSF3", "ZSF4", "FLAG",
 ];
 
-/// The register file. Fields hold what the hardware stores (16-bit registers keep 16 bits).
+/// The register file as the hardware stores it (16-bit registers keep 16 bits), without the
+/// side effects of MTC2/CTC2 (gte.md §2): setting a field changes that field only. Part of a
+/// [`GteState`](crate::GteState).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Registers {
     /// V0, V1, V2 (r0-r5): X, Y, Z.
     pub v: [[i16; 3]; 3],
@@ -39,18 +42,18 @@ pub struct Registers {
     pub mac: [i32; 4],
     /// LZCS (r30).
     pub lzcs: u32,
-    /// LZCR (r31), derived from LZCS on write.
+    /// LZCR (r31); an LZCS write sets it to the count of leading sign bits.
     pub lzcr: u32,
-    /// Rotation matrix RT (c0-c4).
-    pub rt: Matrix,
+    /// Rotation matrix RT (c0-c4), row-major.
+    pub rt: [[i16; 3]; 3],
     /// Translation TR (c5-c7).
     pub tr: [i32; 3],
-    /// Light matrix LLM (c8-c12).
-    pub llm: Matrix,
+    /// Light matrix LLM (c8-c12), row-major.
+    pub llm: [[i16; 3]; 3],
     /// Background colour BK (c13-c15).
     pub bk: [i32; 3],
-    /// Light colour matrix LCM (c16-c20).
-    pub lcm: Matrix,
+    /// Light colour matrix LCM (c16-c20), row-major.
+    pub lcm: [[i16; 3]; 3],
     /// Far colour FC (c21-c23).
     pub fc: [i32; 3],
     /// Screen offset OFX (c24), 16.16.
@@ -88,7 +91,7 @@ const fn sext(value: i16) -> u32 {
 }
 
 /// Leading bits equal to bit 31, 1..=32 (gte.md §2, LZCR).
-pub const fn leading_sign_bits(value: u32) -> u32 {
+pub(crate) const fn leading_sign_bits(value: u32) -> u32 {
     if value & 0x8000_0000 != 0 {
         value.leading_ones()
     } else {
@@ -97,7 +100,7 @@ pub const fn leading_sign_bits(value: u32) -> u32 {
 }
 
 /// Pack IR1-3 as IRGB/ORGB read them: each clamp(IRn SAR 7, 0, 1Fh), 5:5:5 (gte.md §2).
-pub const fn irgb(ir: [i16; 4]) -> u32 {
+pub(crate) const fn irgb(ir: [i16; 4]) -> u32 {
     const fn c(v: i16) -> u32 {
         let v = v >> 7;
         if v < 0 {
@@ -111,7 +114,7 @@ pub const fn irgb(ir: [i16; 4]) -> u32 {
     c(ir[1]) | (c(ir[2]) << 5) | (c(ir[3]) << 10)
 }
 
-fn read_matrix(m: &Matrix, index: usize) -> u32 {
+fn read_matrix(m: &Matrix, index: u32) -> u32 {
     match index {
         0 => pack(m[0][0], m[0][1]),
         1 => pack(m[0][2], m[1][0]),
@@ -121,7 +124,7 @@ fn read_matrix(m: &Matrix, index: usize) -> u32 {
     }
 }
 
-fn write_matrix(m: &mut Matrix, index: usize, value: u32) {
+fn write_matrix(m: &mut Matrix, index: u32, value: u32) {
     match index {
         0 => (m[0][0], m[0][1]) = (lo(value), hi(value)),
         1 => (m[0][2], m[1][0]) = (lo(value), hi(value)),
@@ -133,19 +136,19 @@ fn write_matrix(m: &mut Matrix, index: usize, value: u32) {
 
 impl Registers {
     /// MFC2: read data register `reg & 31` (gte.md §2).
-    pub fn read_data(&self, reg: usize) -> u32 {
+    pub(crate) fn read_data(&self, reg: u32) -> u32 {
         match reg & 31 {
-            r @ (0 | 2 | 4) => pack(self.v[r / 2][0], self.v[r / 2][1]),
-            r @ (1 | 3 | 5) => sext(self.v[r / 2][2]),
+            r @ (0 | 2 | 4) => pack(self.v[r as usize / 2][0], self.v[r as usize / 2][1]),
+            r @ (1 | 3 | 5) => sext(self.v[r as usize / 2][2]),
             6 => self.rgbc,
             7 => self.otz as u32,
-            r @ 8..=11 => sext(self.ir[r - 8]),
-            r @ 12..=14 => self.sxy[r - 12],
+            r @ 8..=11 => sext(self.ir[(r - 8) as usize]),
+            r @ 12..=14 => self.sxy[(r - 12) as usize],
             15 => self.sxy[2],
-            r @ 16..=19 => self.sz[r - 16] as u32,
-            r @ 20..=22 => self.rgb[r - 20],
+            r @ 16..=19 => self.sz[(r - 16) as usize] as u32,
+            r @ 20..=22 => self.rgb[(r - 20) as usize],
             23 => self.res1,
-            r @ 24..=27 => self.mac[r - 24] as u32,
+            r @ 24..=27 => self.mac[(r - 24) as usize] as u32,
             28 | 29 => irgb(self.ir),
             30 => self.lzcs,
             _ => self.lzcr,
@@ -153,22 +156,22 @@ impl Registers {
     }
 
     /// MTC2: write data register `reg & 31` (gte.md §2).
-    pub fn write_data(&mut self, reg: usize, value: u32) {
+    pub(crate) fn write_data(&mut self, reg: u32, value: u32) {
         match reg & 31 {
             r @ (0 | 2 | 4) => {
-                self.v[r / 2][0] = lo(value);
-                self.v[r / 2][1] = hi(value);
+                self.v[r as usize / 2][0] = lo(value);
+                self.v[r as usize / 2][1] = hi(value);
             }
-            r @ (1 | 3 | 5) => self.v[r / 2][2] = lo(value),
+            r @ (1 | 3 | 5) => self.v[r as usize / 2][2] = lo(value),
             6 => self.rgbc = value,
             7 => self.otz = value as u16,
-            r @ 8..=11 => self.ir[r - 8] = lo(value),
-            r @ 12..=14 => self.sxy[r - 12] = value,
+            r @ 8..=11 => self.ir[(r - 8) as usize] = lo(value),
+            r @ 12..=14 => self.sxy[(r - 12) as usize] = value,
             15 => self.push_sxy(value),
-            r @ 16..=19 => self.sz[r - 16] = value as u16,
-            r @ 20..=22 => self.rgb[r - 20] = value,
+            r @ 16..=19 => self.sz[(r - 16) as usize] = value as u16,
+            r @ 20..=22 => self.rgb[(r - 20) as usize] = value,
             23 => self.res1 = value,
-            r @ 24..=27 => self.mac[r - 24] = value as i32,
+            r @ 24..=27 => self.mac[(r - 24) as usize] = value as i32,
             28 => {
                 self.ir[1] = ((value & 0x1F) << 7) as i16;
                 self.ir[2] = (((value >> 5) & 0x1F) << 7) as i16;
@@ -184,14 +187,14 @@ impl Registers {
     }
 
     /// CFC2: read control register `reg & 31` (gte.md §2).
-    pub fn read_control(&self, reg: usize) -> u32 {
+    pub(crate) fn read_control(&self, reg: u32) -> u32 {
         match reg & 31 {
             r @ 0..=4 => read_matrix(&self.rt, r),
-            r @ 5..=7 => self.tr[r - 5] as u32,
+            r @ 5..=7 => self.tr[(r - 5) as usize] as u32,
             r @ 8..=12 => read_matrix(&self.llm, r - 8),
-            r @ 13..=15 => self.bk[r - 13] as u32,
+            r @ 13..=15 => self.bk[(r - 13) as usize] as u32,
             r @ 16..=20 => read_matrix(&self.lcm, r - 16),
-            r @ 21..=23 => self.fc[r - 21] as u32,
+            r @ 21..=23 => self.fc[(r - 21) as usize] as u32,
             24 => self.ofx as u32,
             25 => self.ofy as u32,
             26 => sext(self.h as i16),
@@ -204,14 +207,14 @@ impl Registers {
     }
 
     /// CTC2: write control register `reg & 31` (gte.md §2).
-    pub fn write_control(&mut self, reg: usize, value: u32) {
+    pub(crate) fn write_control(&mut self, reg: u32, value: u32) {
         match reg & 31 {
             r @ 0..=4 => write_matrix(&mut self.rt, r, value),
-            r @ 5..=7 => self.tr[r - 5] = value as i32,
+            r @ 5..=7 => self.tr[(r - 5) as usize] = value as i32,
             r @ 8..=12 => write_matrix(&mut self.llm, r - 8, value),
-            r @ 13..=15 => self.bk[r - 13] = value as i32,
+            r @ 13..=15 => self.bk[(r - 13) as usize] = value as i32,
             r @ 16..=20 => write_matrix(&mut self.lcm, r - 16, value),
-            r @ 21..=23 => self.fc[r - 21] = value as i32,
+            r @ 21..=23 => self.fc[(r - 21) as usize] = value as i32,
             24 => self.ofx = value as i32,
             25 => self.ofy = value as i32,
             26 => self.h = value as u16,
@@ -224,22 +227,22 @@ impl Registers {
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
-    pub fn push_sxy(&mut self, value: u32) {
+    pub(crate) fn push_sxy(&mut self, value: u32) {
         self.sxy = [self.sxy[1], self.sxy[2], value];
     }
 
     /// Push a value onto the screen Z FIFO (SZ0 <- SZ1 <- SZ2 <- SZ3 <- value).
-    pub fn push_sz(&mut self, value: u16) {
+    pub(crate) fn push_sz(&mut self, value: u16) {
         self.sz = [self.sz[1], self.sz[2], self.sz[3], value];
     }
 
     /// Push a colour onto the colour FIFO (RGB0 <- RGB1 <- RGB2 <- value).
-    pub fn push_rgb(&mut self, value: u32) {
+    pub(crate) fn push_rgb(&mut self, value: u32) {
         self.rgb = [self.rgb[1], self.rgb[2], value];
     }
 
     /// Screen X and Y of SXYn as signed halves.
-    pub fn sxy_at(&self, n: usize) -> (i16, i16) {
+    pub(crate) fn sxy_at(&self, n: usize) -> (i16, i16) {
         let v = self.sxy[n % 3];
         (lo(v), hi(v))
     }

@@ -8,7 +8,7 @@
 //! unsigned 16-bit projection distance H, depth-cue DQA (8.8) and DQB (8.24).
 
 use crate::command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
-use crate::{DivideMode, Flag, Gte};
+use crate::{DivideMode, Flag, Gte, UnsupportedDivideMode};
 pub use fixed::types::{I4F12, I8F8, I8F24, I16F16};
 
 /// A 3x3 matrix of 1.3.12 entries (rotation RT, light LLM or light colour LCM), row-major.
@@ -88,6 +88,22 @@ pub struct Projected {
     pub flag: Flag,
 }
 
+/// One projected vertex (RTPS) with its screen position before the integer truncation.
+///
+/// `x`/`y` are the 16.16 values of gte.md §5 step 6 (`quotient * IR1 + OFX`, resp.
+/// `quotient * IR2 + OFY`, from the divide mode in use), saturated to -400h..=3FFh.FFFFh: the
+/// range whose integer parts are the -400h..3FFh that SXY saturates to, with the fraction kept.
+/// So `x.floor()` is always `projected.x` (and likewise for y).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SubpixelProjected {
+    /// What [`Geometry::project`] returns for the same state and vertex.
+    pub projected: Projected,
+    /// Screen X in 16.16, before truncation.
+    pub x: I16F16,
+    /// Screen Y in 16.16, before truncation.
+    pub y: I16F16,
+}
+
 /// Three projected vertices (RTPT).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct ProjectedTriangle {
@@ -135,13 +151,14 @@ impl Matrix {
         self.0.map(|row| row.map(I4F12::to_bits))
     }
 
-    /// Rotation by `x`, then `y`, then `z` (angles in 1/4096 turn): R = Rz * Ry * Rx, each
+    /// Rotation by `x`, then `y`, then `z` (angles in 1/4096 turn, any `i32`: only the low
+    /// 12 bits matter, a whole turn being 4096): R = Rz * Ry * Rx, each
     /// entry rounded to 1.3.12 from an integer sine table, products truncated by >> 12 as PS1
     /// SDK rotation functions do.
     pub fn rotation(x: Angle, y: Angle, z: Angle) -> Matrix {
-        let (sx, cx) = (sin(x), sin(x + 1024));
-        let (sy, cy) = (sin(y), sin(y + 1024));
-        let (sz, cz) = (sin(z), sin(z + 1024));
+        let (sx, cx) = (sin(x), cos(x));
+        let (sy, cy) = (sin(y), cos(y));
+        let (sz, cz) = (sin(z), cos(z));
         let m = [
             [
                 (cz * cy) >> 12,
@@ -173,9 +190,10 @@ impl Matrix {
     }
 }
 
-/// sin(angle) in 1.3.12 for an angle in 1/4096 turn, from a compile-time quarter-wave table.
+/// sin(angle) in 1.3.12 for an angle in 1/4096 turn (any `i32`; only the low 12 bits
+/// matter), from a compile-time quarter-wave table.
 pub fn sin(angle: Angle) -> i32 {
-    let a = angle.rem_euclid(4096) as usize;
+    let a = (angle & 0xFFF) as usize;
     let q = a % 1024;
     let v = match a / 1024 {
         0 => SINE_QUARTER[q],
@@ -186,7 +204,7 @@ pub fn sin(angle: Angle) -> i32 {
     v as i32
 }
 
-/// cos(angle) in 1.3.12.
+/// cos(angle) in 1.3.12 (any `i32`; a quarter turn ahead of [`sin`], wrapping).
 pub fn cos(angle: Angle) -> i32 {
     sin(angle.wrapping_add(1024))
 }
@@ -197,7 +215,7 @@ const SINE_QUARTER: [i16; 1025] = build_sine();
 
 const fn build_sine() -> [i16; 1025] {
     // pi/2 in Q60.
-    const HALF_PI_Q60: i128 = 1_810_991_460_782_602_770;
+    const HALF_PI_Q60: i128 = 1_811_004_864_519_280_711;
     let mut table = [0i16; 1025];
     let mut i = 0;
     while i <= 1024 {
@@ -229,7 +247,7 @@ fn packed(lo: i16, hi: i16) -> u32 {
     (lo as u16 as u32) | ((hi as u16 as u32) << 16)
 }
 
-fn write_matrix(gte: &mut Gte, first: usize, m: &Matrix) {
+fn write_matrix(gte: &mut Gte, first: u32, m: &Matrix) {
     let b = m.to_bits();
     gte.write_control(first, packed(b[0][0], b[0][1]));
     gte.write_control(first + 1, packed(b[0][2], b[1][0]));
@@ -238,7 +256,7 @@ fn write_matrix(gte: &mut Gte, first: usize, m: &Matrix) {
     gte.write_control(first + 4, b[2][2] as i32 as u32);
 }
 
-fn write_vector(gte: &mut Gte, index: usize, v: Vector3) {
+fn write_vector(gte: &mut Gte, index: u32, v: Vector3) {
     gte.write_data(index * 2, packed(v.x, v.y));
     gte.write_data(index * 2 + 1, v.z as i32 as u32);
 }
@@ -291,9 +309,10 @@ impl Geometry {
         &mut self.gte
     }
 
-    /// Select the divide used by projection (non-hardware modes are accuracy knobs).
-    pub fn set_divide_mode(&mut self, mode: DivideMode) {
-        self.gte.set_divide_mode(mode);
+    /// Select the divide used by projection (non-hardware modes are accuracy knobs), as
+    /// [`Gte::set_divide_mode`]: refused without the `divide-modes` feature.
+    pub fn set_divide_mode(&mut self, mode: DivideMode) -> Result<(), UnsupportedDivideMode> {
+        self.gte.set_divide_mode(mode)
     }
 
     /// Load the rotation matrix RT (c0-c4).
@@ -331,15 +350,15 @@ impl Geometry {
 
     /// Load the background (ambient) colour BK (c13-c15), 1.19.12 per channel (4096 = 1.0).
     pub fn set_background_color(&mut self, bk: [i32; 3]) {
-        for (i, v) in bk.into_iter().enumerate() {
-            self.gte.write_control(13 + i, v as u32);
+        for (r, v) in (13..).zip(bk) {
+            self.gte.write_control(r, v as u32);
         }
     }
 
     /// Load the far colour FC (c21-c23) that depth cueing fades towards, 1.27.4 per channel.
     pub fn set_far_color(&mut self, fc: [i32; 3]) {
-        for (i, v) in fc.into_iter().enumerate() {
-            self.gte.write_control(21 + i, v as u32);
+        for (r, v) in (21..).zip(fc) {
+            self.gte.write_control(r, v as u32);
         }
     }
 
@@ -357,9 +376,29 @@ impl Geometry {
         }
     }
 
+    /// RTPS with the sub-pixel screen position: one command, the same register effects and
+    /// [`Projected`] as [`Geometry::project`], plus the 16.16 screen X/Y before the integer
+    /// truncation (gte.md §5 step 6), saturated as [`SubpixelProjected`] says.
+    pub fn project_subpixel(&mut self, v: Vector3) -> SubpixelProjected {
+        let projected = self.project(v);
+        let regs = self.gte.registers();
+        // The quotient RTPS used: H and the saturated SZ3 it pushed (gte.md §5 steps 4-5).
+        let (q, _) = crate::unr::divide(self.gte.divide_mode(), regs.h, projected.sz);
+        let q = q as i64;
+        let fine = |ir: i16, offset: i32| {
+            let value = q * ir as i64 + offset as i64;
+            I16F16::from_bits(value.clamp(-0x400 << 16, (0x400 << 16) - 1) as i32)
+        };
+        SubpixelProjected {
+            projected,
+            x: fine(regs.ir[1], regs.ofx),
+            y: fine(regs.ir[2], regs.ofy),
+        }
+    }
+
     /// RTPT: rotate, translate and project three vertices.
     pub fn project_triangle(&mut self, v: [Vector3; 3]) -> ProjectedTriangle {
-        for (i, v) in v.into_iter().enumerate() {
+        for (i, v) in (0..).zip(v) {
             write_vector(&mut self.gte, i, v);
         }
         self.gte.execute(command(Opcode::Rtpt));
@@ -381,16 +420,16 @@ impl Geometry {
 
     /// NCLIP of three screen points.
     pub fn nclip(&mut self, xy: [(i16, i16); 3]) -> i32 {
-        for (i, (x, y)) in xy.into_iter().enumerate() {
-            self.gte.write_data(12 + i, packed(x, y));
+        for (r, (x, y)) in (12..).zip(xy) {
+            self.gte.write_data(r, packed(x, y));
         }
         self.nclip_current()
     }
 
     /// AVSZ3 of three screen Z values: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) >> 12.
     pub fn average_z3(&mut self, sz: [u16; 3]) -> u16 {
-        for (i, z) in sz.into_iter().enumerate() {
-            self.gte.write_data(17 + i, z as u32);
+        for (r, z) in (17..).zip(sz) {
+            self.gte.write_data(r, z as u32);
         }
         self.gte.execute(command(Opcode::Avsz3));
         self.gte.read_data(7) as u16
@@ -398,8 +437,8 @@ impl Geometry {
 
     /// AVSZ4 of four screen Z values: OTZ = ZSF4 * (SZ0 + ... + SZ3) >> 12.
     pub fn average_z4(&mut self, sz: [u16; 4]) -> u16 {
-        for (i, z) in sz.into_iter().enumerate() {
-            self.gte.write_data(16 + i, z as u32);
+        for (r, z) in (16..).zip(sz) {
+            self.gte.write_data(r, z as u32);
         }
         self.gte.execute(command(Opcode::Avsz4));
         self.gte.read_data(7) as u16
@@ -420,7 +459,7 @@ impl Geometry {
     }
 
     fn triple(&mut self, op: Opcode, normals: [Vector3; 3]) -> [Rgb; 3] {
-        for (i, n) in normals.into_iter().enumerate() {
+        for (i, n) in (0..).zip(normals) {
             write_vector(&mut self.gte, i, n);
         }
         self.gte.execute(command(op));
@@ -485,6 +524,8 @@ mod tests {
         assert_eq!(sin(2048), 0);
         assert_eq!(sin(3072), -4096);
         assert_eq!(cos(0), 4096);
+        // 982/4096 turn: 4096 * sin = 4087.502 -> 4088 (a wrong pi/2 constant once gave 4087).
+        assert_eq!(sin(982), 4088);
     }
 
     #[test]

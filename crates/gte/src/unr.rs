@@ -6,7 +6,7 @@ pub const QUOTIENT_MAX: u32 = 0x1_FFFF;
 
 /// The reciprocal seed table T[0..=256] (gte.md §6):
 /// `T[i] = max(0, ((40000h div (i + 100h)) + 1) div 2 - 101h)`, built at compile time.
-pub const UNR_TABLE: [u8; 257] = build_table();
+pub(crate) const UNR_TABLE: [u8; 257] = build_table();
 
 const fn build_table() -> [u8; 257] {
     let mut table = [0u8; 257];
@@ -22,6 +22,7 @@ const fn build_table() -> [u8; 257] {
 /// How RTPS/RTPT divide H by SZ3. Only [`DivideMode::Unr`] is hardware behaviour; the others
 /// are accuracy knobs for measuring what the UNR approximation costs (docs/gte.md).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DivideMode {
     /// The console's table + Newton-Raphson divide (gte.md §6).
     #[default]
@@ -89,22 +90,43 @@ pub fn f32_divide(h: u16, sz3: u16) -> (u32, bool) {
     (q, false)
 }
 
-/// Divide with the selected mode.
+/// `H * 10000h / SZ3` by the given mode: the quotient and whether the divide overflowed.
 ///
-/// Built without the `divide-modes` feature, every mode is the hardware UNR divide.
+/// A plain function, available in every build: the `divide-modes` feature only decides
+/// whether a [`Gte`](crate::Gte) can be set to run the non-hardware modes.
 pub fn divide(mode: DivideMode, h: u16, sz3: u16) -> (u32, bool) {
-    #[cfg(feature = "divide-modes")]
     match mode {
         DivideMode::Unr => unr_divide(h, sz3),
         DivideMode::Exact => exact_divide(h, sz3),
         DivideMode::F32 => f32_divide(h, sz3),
     }
-    #[cfg(not(feature = "divide-modes"))]
-    {
-        let _ = mode;
-        unr_divide(h, sz3)
+}
+
+impl DivideMode {
+    /// Whether a [`Gte`](crate::Gte) of this build can run the mode: [`DivideMode::Unr`]
+    /// always; [`DivideMode::Exact`] and [`DivideMode::F32`] only with the `divide-modes`
+    /// feature.
+    pub const fn is_supported(self) -> bool {
+        matches!(self, DivideMode::Unr) || cfg!(feature = "divide-modes")
     }
 }
+
+/// A divide mode this build of the engine cannot run: [`DivideMode::Exact`] or
+/// [`DivideMode::F32`] without the `divide-modes` feature (docs/gte.md, "Features").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct UnsupportedDivideMode(pub DivideMode);
+
+impl core::fmt::Display for UnsupportedDivideMode {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "divide mode {:?} needs the `divide-modes` feature of the gte crate",
+            self.0
+        )
+    }
+}
+
+impl core::error::Error for UnsupportedDivideMode {}
 
 #[cfg(test)]
 mod tests {

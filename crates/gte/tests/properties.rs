@@ -1,9 +1,9 @@
 //! Property tests of the register-level engine. Expected values come from the fact sheet's
 //! rules evaluated independently here in i128 (never from the engine's own output).
 
-use gte::command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
 use gte::unr::{exact_divide, unr_divide};
-use gte::{Flag, Gte};
+use gte::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
+use gte::{DivideMode, Flag, Gte};
 use proptest::prelude::*;
 
 const MAC_MAX: i128 = (1 << 43) - 1;
@@ -52,7 +52,7 @@ proptest! {
     fn no_panic_any_state_any_command(regs in prop::collection::vec(any::<u32>(), 64), word in any_command()) {
         let mut gte = Gte::new();
         for (i, v) in regs.iter().enumerate() {
-            gte.write(i, *v);
+            gte.write((i) as u32, *v);
         }
         gte.execute(word);
         for i in 0..64 {
@@ -99,7 +99,7 @@ proptest! {
         gte.write_control(1, (col[1] as u16 as u32) << 16);
         gte.write_control(3, col[2] as u16 as u32);
         for (n, t) in tr.iter().enumerate() {
-            gte.write_control(5 + n, *t as u32);
+            gte.write_control((5 + n) as u32, *t as u32);
         }
         gte.write_data(0, packed(vx, 0));
         let word = Command::build(Opcode::Mvmva, sf, false, MatrixSel::Rotation, VectorSel::V0, TranslationSel::Translation).word();
@@ -114,7 +114,7 @@ proptest! {
             prop_assert_eq!(flag.contains(negative[n]), sum < MAC_MIN, "MAC{}", n + 1);
             // MACn is the 44-bit wrapped sum shifted, low 32 bits.
             let wrapped = if sum > MAC_MAX { sum - (1 << 44) } else if sum < MAC_MIN { sum + (1 << 44) } else { sum };
-            prop_assert_eq!(gte.read_data(25 + n), (wrapped >> shift) as i32 as u32, "MAC{}", n + 1);
+            prop_assert_eq!(gte.read_data((25 + n) as u32), (wrapped >> shift) as i32 as u32, "MAC{}", n + 1);
         }
     }
 
@@ -125,7 +125,7 @@ proptest! {
         let mut gte = Gte::new();
         let words = [packed(m[0], m[1]), packed(m[2], m[3]), packed(m[4], m[5]), packed(m[6], m[7]), m[8] as u32];
         for (i, w) in words.into_iter().enumerate() {
-            gte.write_control(i, w);
+            gte.write_control((i) as u32, w);
         }
         gte.write_data(0, packed(v[0], v[1]));
         gte.write_data(1, v[2] as u16 as u32);
@@ -136,10 +136,10 @@ proptest! {
         let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED, Flag::IR3_SATURATED];
         for row in 0..3 {
             let dot: i128 = (0..3).map(|c| m[row * 3 + c] as i128 * v[c] as i128).sum();
-            prop_assert_eq!(gte.read_data(25 + row) as i32 as i128, dot);
+            prop_assert_eq!(gte.read_data((25 + row) as u32) as i32 as i128, dot);
             let out = !(min..=0x7FFF).contains(&dot);
             prop_assert_eq!(flag.contains(bits[row]), out);
-            prop_assert_eq!(gte.read_data(9 + row) as i32 as i128, dot.clamp(min, 0x7FFF));
+            prop_assert_eq!(gte.read_data((9 + row) as u32) as i32 as i128, dot.clamp(min, 0x7FFF));
         }
     }
 
@@ -148,7 +148,7 @@ proptest! {
     fn nclip_mac0_flags(p in prop::array::uniform6(any::<i16>())) {
         let mut gte = Gte::new();
         for i in 0..3 {
-            gte.write_data(12 + i, packed(p[2 * i], p[2 * i + 1]));
+            gte.write_data((12 + i) as u32, packed(p[2 * i], p[2 * i + 1]));
         }
         gte.execute(Opcode::Nclip.bits());
         let [x0, y0, x1, y1, x2, y2] = p.map(|v| v as i128);
@@ -164,7 +164,7 @@ proptest! {
     fn otz_saturation(zsf in any::<i16>(), sz in prop::array::uniform4(any::<u16>()), four in any::<bool>()) {
         let mut gte = Gte::new();
         for (i, z) in sz.iter().enumerate() {
-            gte.write_data(16 + i, *z as u32);
+            gte.write_data((16 + i) as u32, *z as u32);
         }
         gte.write_control(if four { 30 } else { 29 }, zsf as u16 as u32);
         gte.execute(if four { Opcode::Avsz4 } else { Opcode::Avsz3 }.bits());
@@ -184,7 +184,7 @@ proptest! {
         let mut gte = Gte::new();
         gte.write_data(8, ir0 as u16 as u32);
         for (i, v) in ir.iter().enumerate() {
-            gte.write_data(9 + i, *v as u16 as u32);
+            gte.write_data((9 + i) as u32, *v as u16 as u32);
         }
         gte.execute(cmd(Opcode::Gpf, sf, false));
         let shift = if sf { 12 } else { 0 };
@@ -208,7 +208,7 @@ proptest! {
     ) {
         let mut gte = Gte::new();
         for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
-            gte.write_control(i, w);
+            gte.write_control((i) as u32, w);
         }
         gte.write_control(7, trz as u32);
         gte.write_control(24, ofx as u32);
@@ -288,7 +288,7 @@ proptest! {
     fn orgb_clamps(ir in prop::array::uniform3(any::<i16>())) {
         let mut gte = Gte::new();
         for (i, v) in ir.iter().enumerate() {
-            gte.write_data(9 + i, *v as u16 as u32);
+            gte.write_data((9 + i) as u32, *v as u16 as u32);
         }
         let expect: u32 = (0..3).map(|n| (((ir[n] as i32) >> 7).clamp(0, 31) as u32) << (5 * n)).sum();
         prop_assert_eq!(gte.read_data(29), expect);
@@ -315,7 +315,7 @@ fn undefined_opcodes_only_clear_flag() {
         }
         let mut gte = Gte::new();
         for r in 0..63 {
-            gte.write(r, 0x1234_5678u32.rotate_left(r as u32));
+            gte.write(r, 0x1234_5678u32.rotate_left(r));
         }
         gte.write_control(31, 0xFFFF_FFFF);
         let before: Vec<u32> = (0..63).map(|r| gte.read(r)).collect();
@@ -371,4 +371,25 @@ fn cycle_counts() {
         assert_eq!(Gte::new().execute(op | 0x1F0_0000), Some(cycles));
     }
     assert_eq!(gte::cycles(0), None);
+}
+
+/// The non-hardware divides run only in a build with `divide-modes`; without it they are
+/// refused and the hardware divide stays selected (docs/gte.md, "Features").
+#[test]
+fn divide_mode_support_follows_the_feature() {
+    let with = cfg!(feature = "divide-modes");
+    for mode in [DivideMode::Exact, DivideMode::F32] {
+        let mut gte = Gte::new();
+        assert_eq!(mode.is_supported(), with);
+        let result = gte.set_divide_mode(mode);
+        if with {
+            assert_eq!(result, Ok(()));
+            assert_eq!(gte.divide_mode(), mode);
+        } else {
+            assert_eq!(result, Err(gte::UnsupportedDivideMode(mode)));
+            assert_eq!(gte.divide_mode(), DivideMode::Unr);
+        }
+    }
+    assert!(DivideMode::Unr.is_supported());
+    assert_eq!(Gte::new().set_divide_mode(DivideMode::Unr), Ok(()));
 }

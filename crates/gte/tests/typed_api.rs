@@ -2,6 +2,8 @@
 //! the same operation by hand (register writes, command words assembled from the fact
 //! sheet's bit layout, gte.md §1) and compares.
 
+#![cfg(feature = "typed")]
+
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Gte};
 use proptest::prelude::*;
@@ -13,6 +15,14 @@ fn packed(lo: i16, hi: i16) -> u32 {
     (lo as u16 as u32) | ((hi as u16 as u32) << 16)
 }
 
+/// The divide modes this build runs: all three with `divide-modes`, UNR alone without.
+fn supported_modes() -> Vec<DivideMode> {
+    [DivideMode::Unr, DivideMode::Exact, DivideMode::F32]
+        .into_iter()
+        .filter(|m| m.is_supported())
+        .collect()
+}
+
 fn matrix() -> impl Strategy<Value = [[i16; 3]; 3]> {
     prop::array::uniform3(prop::array::uniform3(any::<i16>()))
 }
@@ -21,7 +31,7 @@ fn vector() -> impl Strategy<Value = Vector3> {
     (any::<i16>(), any::<i16>(), any::<i16>()).prop_map(|(x, y, z)| Vector3 { x, y, z })
 }
 
-fn load_matrix(gte: &mut Gte, first: usize, m: &[[i16; 3]; 3]) {
+fn load_matrix(gte: &mut Gte, first: u32, m: &[[i16; 3]; 3]) {
     gte.write_control(first, packed(m[0][0], m[0][1]));
     gte.write_control(first + 1, packed(m[0][2], m[1][0]));
     gte.write_control(first + 2, packed(m[1][1], m[1][2]));
@@ -90,7 +100,7 @@ fn by_hand(s: &Setup) -> Gte {
     let mut gte = Gte::new();
     load_matrix(&mut gte, 0, &s.rt);
     for i in 0..3 {
-        gte.write_control(5 + i, s.tr[i] as u32);
+        gte.write_control((5 + i) as u32, s.tr[i] as u32);
     }
     gte.write_control(24, s.ofx as u32);
     gte.write_control(25, s.ofy as u32);
@@ -106,12 +116,12 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(1000))]
 
     #[test]
-    fn project_equals_rtps(s in setup(), v in vector(), mode in prop::sample::select(vec![DivideMode::Unr, DivideMode::Exact, DivideMode::F32])) {
+    fn project_equals_rtps(s in setup(), v in vector(), mode in prop::sample::select(supported_modes())) {
         let mut g = typed(&s);
-        g.set_divide_mode(mode);
+        g.set_divide_mode(mode).unwrap();
         let p = g.project(v);
         let mut gte = by_hand(&s);
-        gte.set_divide_mode(mode);
+        gte.set_divide_mode(mode).unwrap();
         gte.write_data(0, packed(v.x, v.y));
         gte.write_data(1, v.z as u16 as u32);
         gte.execute(0x01 | SF);
@@ -128,13 +138,13 @@ proptest! {
         let p = g.project_triangle(v);
         let mut gte = by_hand(&s);
         for (i, v) in v.iter().enumerate() {
-            gte.write_data(2 * i, packed(v.x, v.y));
-            gte.write_data(2 * i + 1, v.z as u16 as u32);
+            gte.write_data((2 * i) as u32, packed(v.x, v.y));
+            gte.write_data((2 * i + 1) as u32, v.z as u16 as u32);
         }
         gte.execute(0x30 | SF);
         for i in 0..3 {
-            prop_assert_eq!(packed(p.xy[i].0, p.xy[i].1), gte.read_data(12 + i));
-            prop_assert_eq!(p.sz[i] as u32, gte.read_data(17 + i));
+            prop_assert_eq!(packed(p.xy[i].0, p.xy[i].1), gte.read_data((12 + i) as u32));
+            prop_assert_eq!(p.sz[i] as u32, gte.read_data((17 + i) as u32));
         }
         prop_assert_eq!(p.flag.bits(), gte.read_control(31));
         prop_assert_eq!(g.gte(), &gte);
@@ -153,7 +163,7 @@ proptest! {
         let otz = g.average_z4(sz);
         let mut gte = by_hand(&s);
         for (i, z) in sz.iter().enumerate() {
-            gte.write_data(16 + i, *z as u32);
+            gte.write_data((16 + i) as u32, *z as u32);
         }
         gte.execute(0x2E);
         prop_assert_eq!(otz as u32, gte.read_data(7));
@@ -176,8 +186,8 @@ proptest! {
         load_matrix(&mut gte, 8, &llm);
         load_matrix(&mut gte, 16, &lcm);
         for i in 0..3 {
-            gte.write_control(13 + i, bk[i] as u32);
-            gte.write_control(21 + i, fc[i] as u32);
+            gte.write_control((13 + i) as u32, bk[i] as u32);
+            gte.write_control((21 + i) as u32, fc[i] as u32);
         }
         gte.write_data(8, ir0 as u16 as u32);
         let rgbc = color[0] as u32 | (color[1] as u32) << 8 | (color[2] as u32) << 16;
@@ -196,8 +206,8 @@ proptest! {
             gte.write_data(6, rgbc);
         }
         for (i, v) in n.iter().enumerate() {
-            gte.write_data(2 * i, packed(v.x, v.y));
-            gte.write_data(2 * i + 1, v.z as u16 as u32);
+            gte.write_data((2 * i) as u32, packed(v.x, v.y));
+            gte.write_data((2 * i + 1) as u32, v.z as u16 as u32);
         }
         // The SDK's lighting words set lm (bit 10); DPCS does not.
         let lm = if op < 6 { 1 << 10 } else { 0 };
@@ -276,10 +286,10 @@ proptest! {
             s.rt[2][2] as i32 as u32,
         ];
         for (i, w) in rt.into_iter().enumerate() {
-            prop_assert_eq!(gte.read_control(i), w);
+            prop_assert_eq!(gte.read_control((i) as u32), w);
         }
         for i in 0..3 {
-            prop_assert_eq!(gte.read_control(5 + i), s.tr[i] as u32);
+            prop_assert_eq!(gte.read_control((5 + i) as u32), s.tr[i] as u32);
         }
         prop_assert_eq!(gte.read_control(24), s.ofx as u32);
         prop_assert_eq!(gte.read_control(25), s.ofy as u32);
@@ -298,5 +308,214 @@ proptest! {
         let [(x0, y0), (x1, y1), (x2, y2)] = p.map(|(x, y)| (x as i64, y as i64));
         let area = x0 * y1 + x1 * y2 + x2 * y0 - x0 * y2 - x1 * y0 - x2 * y1;
         prop_assert_eq!(got as i64, area);
+    }
+}
+
+/// A set-up whose projections mostly land on screen, so the unsaturated case is exercised.
+fn on_screen_setup() -> impl Strategy<Value = Setup> {
+    (
+        prop::array::uniform3(prop::array::uniform3(-4096i16..=4096)),
+        (-2000i32..2000, -2000i32..2000, 200i32..20000),
+        any::<i32>().prop_map(|f| (160 << 16) + (f & 0xFFFF)),
+        any::<i32>().prop_map(|f| (120 << 16) + (f & 0xFFFF)),
+        100u16..1000,
+    )
+        .prop_map(|(rt, (x, y, z), ofx, ofy, h)| Setup {
+            rt,
+            tr: [x, y, z],
+            ofx,
+            ofy,
+            h,
+            dqa: 0,
+            dqb: 0,
+            zsf3: 0,
+            zsf4: 0,
+        })
+}
+
+/// Screen X/Y before truncation, computed from the fact sheet in i128 (gte.md §5 steps 1-6,
+/// sf = 1, lm = 0): the 44-bit accumulator wraps modulo 2^44, IRn saturates MACn to 16 bits,
+/// SZ3 saturates acc3 SAR 12 to 0..FFFFh, and the sum quotient * IRn + OFn is clamped to the
+/// screen range. `quotient` is the divide of H by SZ3.
+fn subpixel_by_hand(s: &Setup, v: Vector3, quotient: impl Fn(u16, u16) -> u32) -> (i128, i128) {
+    let v = [v.x as i128, v.y as i128, v.z as i128];
+    let acc: Vec<i128> = (0..3)
+        .map(|r| {
+            let sum =
+                ((s.tr[r] as i128) << 12) + (0..3).map(|c| s.rt[r][c] as i128 * v[c]).sum::<i128>();
+            // Two's complement modulo 2^44.
+            let m = sum.rem_euclid(1 << 44);
+            if m >= 1 << 43 { m - (1 << 44) } else { m }
+        })
+        .collect();
+    let ir = |a: i128| (((a >> 12) as i32) as i128).clamp(-0x8000, 0x7FFF);
+    let sz3 = (acc[2] >> 12).clamp(0, 0xFFFF) as u16;
+    let q = quotient(s.h, sz3) as i128;
+    let limit = 0x400i128 << 16;
+    (
+        (q * ir(acc[0]) + s.ofx as i128).clamp(-limit, limit - 1),
+        (q * ir(acc[1]) + s.ofy as i128).clamp(-limit, limit - 1),
+    )
+}
+
+/// round(H * 10000h / SZ3) with the overflow rule H >= 2 * SZ3 and the 1FFFFh clamp
+/// (gte.md §6), in i128.
+fn exact_quotient(h: u16, sz3: u16) -> u32 {
+    let (h, sz3) = (h as i128, sz3 as i128);
+    if h >= 2 * sz3 {
+        return 0x1FFFF;
+    }
+    ((h * 65536 * 2 + sz3) / (2 * sz3)).min(0x1FFFF) as u32
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn project_subpixel_properties(
+        s in prop_oneof![setup(), on_screen_setup()],
+        v in prop_oneof![vector(), prop::array::uniform3(-1000i16..1000).prop_map(|[x, y, z]| Vector3 { x, y, z })],
+        mode in prop::sample::select(supported_modes()),
+    ) {
+        let mut g = typed(&s);
+        g.set_divide_mode(mode).unwrap();
+        let mut reference = g.clone();
+        let p = reference.project(v);
+        let sp = g.project_subpixel(v);
+        // One RTPS: the same result and the same register file as `project`.
+        prop_assert_eq!(sp.projected, p);
+        prop_assert_eq!(g.gte(), reference.gte());
+        let sat_x = p.flag.contains(gte::Flag::SX2_SATURATED);
+        let sat_y = p.flag.contains(gte::Flag::SY2_SATURATED);
+        if !sat_x {
+            prop_assert_eq!(sp.x.floor().to_num::<i32>(), p.x as i32);
+        }
+        if !sat_y {
+            prop_assert_eq!(sp.y.floor().to_num::<i32>(), p.y as i32);
+        }
+        let (x, y) = match mode {
+            DivideMode::Exact => subpixel_by_hand(&s, v, exact_quotient),
+            // The UNR and f32 quotients are checked on their own (console vectors and the
+            // divide properties); here they feed the independent screen computation.
+            _ => subpixel_by_hand(&s, v, |h, sz3| gte::unr::divide(mode, h, sz3).0),
+        };
+        prop_assert_eq!(sp.x.to_bits() as i128, x);
+        prop_assert_eq!(sp.y.to_bits() as i128, y);
+    }
+}
+
+#[test]
+fn subpixel_on_axis_keeps_the_offset_fraction() {
+    // A vertex on the optical axis: IR1 = IR2 = 0, so the screen position is OFX/OFY exactly
+    // (gte.md §5 step 6), fraction included, while SXY holds the integer parts.
+    let mut g = Geometry::new();
+    g.set_rotation(&Matrix::IDENTITY);
+    g.set_translation(Translation {
+        x: 0,
+        y: 0,
+        z: 1000,
+    });
+    g.set_projection(&Projection {
+        offset_x: I16F16::from_bits((160 << 16) | 0xC000),
+        offset_y: I16F16::from_bits((120 << 16) | 0x4000),
+        ..Projection::default()
+    });
+    let sp = g.project_subpixel(Vector3::default());
+    assert_eq!(sp.x, I16F16::from_num(160.75));
+    assert_eq!(sp.y, I16F16::from_num(120.25));
+    assert_eq!((sp.projected.x, sp.projected.y), (160, 120));
+}
+
+fn fixed_matrix() -> impl Strategy<Value = Matrix> {
+    matrix().prop_map(Matrix::from_bits)
+}
+
+fn full_projection() -> impl Strategy<Value = Projection> {
+    (
+        any::<i32>(),
+        any::<i32>(),
+        any::<u16>(),
+        any::<i16>(),
+        any::<i32>(),
+        any::<i16>(),
+        any::<i16>(),
+    )
+        .prop_map(|(ofx, ofy, h, dqa, dqb, zsf3, zsf4)| Projection {
+            offset_x: I16F16::from_bits(ofx),
+            offset_y: I16F16::from_bits(ofy),
+            h,
+            dqa: I8F8::from_bits(dqa),
+            dqb: I8F24::from_bits(dqb),
+            zsf3: I4F12::from_bits(zsf3),
+            zsf4: I4F12::from_bits(zsf4),
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(3000))]
+
+    /// Angles are 1/4096 turn: only the low 12 bits matter, for every i32 (no overflow near
+    /// i32::MIN/MAX), and the table is within one unit of 4096 * sin computed in f64.
+    #[test]
+    fn rotation_uses_low_12_bits(x in any::<i32>(), y in any::<i32>(), z in any::<i32>()) {
+        prop_assert_eq!(Matrix::rotation(x, y, z), Matrix::rotation(x & 0xFFF, y & 0xFFF, z & 0xFFF));
+        let turn = (x & 0xFFF) as f64 / 4096.0 * std::f64::consts::TAU;
+        prop_assert!((gte::typed::sin(x) as f64 - 4096.0 * turn.sin()).abs() <= 0.5 + 1e-9);
+        prop_assert!((gte::typed::cos(x) as f64 - 4096.0 * turn.cos()).abs() <= 0.5 + 1e-9);
+    }
+
+    /// Every typed entry point with full-range inputs (every i32/i16/u16/u8 and fixed-point
+    /// bit pattern) in one sequence, run with overflow checks: no panic, and every result
+    /// keeps the documented ranges.
+    #[test]
+    fn every_entry_point_full_range(
+        angles in prop::array::uniform3(any::<i32>()),
+        m in prop::array::uniform3(fixed_matrix()),
+        tr in prop::array::uniform3(any::<i32>()),
+        p in full_projection(),
+        colors in (prop::array::uniform3(any::<i32>()), prop::array::uniform3(any::<i32>())),
+        v in prop::array::uniform3(vector()),
+        xy in prop::array::uniform3((any::<i16>(), any::<i16>())),
+        sz in prop::array::uniform4(any::<u16>()),
+        rgb in prop::array::uniform3(any::<u8>()),
+        ir0 in any::<i16>(),
+        mode in prop::sample::select(supported_modes()),
+    ) {
+        let r = Matrix::rotation(angles[0], angles[1], angles[2]);
+        let product = r.multiply(&m[0]).multiply(&m[1]);
+        prop_assert_eq!(Matrix::from_bits(product.to_bits()), product);
+        let mut g = Geometry::from_gte(Gte::new());
+        g.set_divide_mode(mode).unwrap();
+        g.set_rotation(&product);
+        g.set_translation(Translation { x: tr[0], y: tr[1], z: tr[2] });
+        g.set_projection(&p);
+        g.set_light_matrix(&m[1]);
+        g.set_light_colors(&m[2]);
+        g.set_background_color(colors.0);
+        g.set_far_color(colors.1);
+        let one = g.project(v[0]);
+        let sub = g.project_subpixel(v[1]);
+        prop_assert_eq!(sub.x.floor().to_num::<i32>(), sub.projected.x as i32);
+        prop_assert_eq!(sub.y.floor().to_num::<i32>(), sub.projected.y as i32);
+        let three = g.project_triangle(v);
+        for (x, y) in [(one.x, one.y)].into_iter().chain(three.xy) {
+            prop_assert!((-0x400..=0x3FF).contains(&x) && (-0x400..=0x3FF).contains(&y));
+        }
+        prop_assert!((0..=0x1000).contains(&three.ir0.to_bits()));
+        let _ = g.nclip_current();
+        let _ = g.nclip(xy);
+        let _ = g.average_z3([sz[0], sz[1], sz[2]]);
+        let _ = g.average_z4(sz);
+        let _ = g.normal_color(v[0]);
+        let _ = g.normal_color_triple(v);
+        let _ = g.normal_color_color(v[1], rgb);
+        let _ = g.normal_color_color_triple(v, rgb);
+        let _ = g.normal_color_depth(v[2], rgb);
+        let _ = g.normal_color_depth_triple(v, rgb);
+        let _ = g.depth_cue(rgb, I4F12::from_bits(ir0));
+        let flag = g.gte().flag().bits();
+        prop_assert_eq!(flag & 0xFFF, 0);
+        prop_assert_eq!(flag >> 31 == 1, flag & 0x7F87_E000 != 0);
+        let _ = g.gte_mut().execute(gte::typed::command(gte::Opcode::Mvmva));
     }
 }

@@ -5,8 +5,8 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use wobble::mesh::{Mesh, MeshFace, MeshVertex};
 use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
+use wobble::scene::mesh::{Mesh, MeshFace, MeshVertex};
 use wobble::scene::{MeshAsset, Scene};
 
 /// The default scene with its objects replaced by one sphere of 2,976 triangles

@@ -1,15 +1,16 @@
-//! The wobble pipeline and tools: scene rendering through GTE -> ordering table -> GPU,
-//! GTE vector replay, command-stream replay and VRAM dumps.
+//! The wobble pipeline and tools, stage by stage:
+//!
+//! - [`scene`]: scene files and validation, meshes, textures and their palettes, VRAM
+//!   placement, the built-in scene;
+//! - [`pipeline`]: the PS1 renderer, GTE stage -> ordering-table stage -> GPU submission;
+//! - [`reference`]: the f64 reference renderer the PS1 output is measured against;
+//! - [`trade`]: the accuracy/cost trade report;
+//! - [`gte_vectors`]: replay of GTE test vectors;
+//! - [`vram_image`]: VRAM to images and the raw VRAM file format.
 
-pub mod default_scene;
-pub mod gte_replay;
-pub mod mesh;
+pub mod gte_vectors;
 pub mod pipeline;
-pub mod quantize;
 pub mod reference;
-pub mod render;
 pub mod scene;
-pub mod tessellate;
 pub mod trade;
-pub mod vram_alloc;
 pub mod vram_image;

@@ -4,10 +4,10 @@
 use gpu::{DisplayArea, VRAM_HEIGHT, VRAM_LEN, VRAM_WIDTH};
 use image::{Rgb, RgbImage, Rgba, RgbaImage};
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// How a 5-bit channel becomes 8 bits.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Expand {
     /// `c << 3 | c >> 2`: 31 maps to 255.
     #[default]
@@ -51,10 +51,13 @@ pub enum ImageError {
         /// File size found.
         size: usize,
     },
-    /// Reading or writing a file failed.
-    Io(String, std::io::Error),
-    /// Encoding a PNG failed.
-    Encode(String, image::ImageError),
+    /// Encoding or writing a PNG failed.
+    Encode {
+        /// The image file.
+        file: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
 }
 
 impl fmt::Display for ImageError {
@@ -65,13 +68,19 @@ impl fmt::Display for ImageError {
                 "raw VRAM must be {} bytes (1024x512 little-endian u16), got {size}",
                 VRAM_LEN * 2
             ),
-            ImageError::Io(path, e) => write!(f, "{path}: {e}"),
-            ImageError::Encode(path, e) => write!(f, "{path}: {e}"),
+            ImageError::Encode { file, source } => write!(f, "{}: {source}", file.display()),
         }
     }
 }
 
-impl std::error::Error for ImageError {}
+impl std::error::Error for ImageError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            ImageError::RawSize { .. } => None,
+            ImageError::Encode { source, .. } => Some(source),
+        }
+    }
+}
 
 /// The whole VRAM as a 1024x512 RGB image.
 pub fn vram_image(vram: &[u16], expand: Expand) -> RgbImage {
@@ -168,7 +177,10 @@ where
     C: std::ops::Deref<Target = [P::Subpixel]>,
 {
     img.save_with_format(path, image::ImageFormat::Png)
-        .map_err(|e| ImageError::Encode(path.display().to_string(), e))
+        .map_err(|source| ImageError::Encode {
+            file: path.to_path_buf(),
+            source,
+        })
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
 //! The accuracy-trade measurements: the reference renderer on cases with known answers and
-//! the report's accuracy columns on the face-on scene (not timed).
+//! the report's accuracy columns on the face-on scene (not timed). The `wobble trade`
+//! command itself is tested in crates/wobble-cli/tests/trade.rs.
 
 use std::path::PathBuf;
 use wobble::reference;
@@ -49,7 +50,7 @@ fn reference_face_on_texels() {
 fn reference_perspective_case() {
     let mut s = scene("face-on.toml");
     // A single square (the cube's front face alone), centred 512 units away.
-    s.meshes[0].mesh = wobble::mesh::Mesh {
+    s.meshes[0].mesh = wobble::scene::mesh::Mesh {
         vertices: [
             (-1.0, -1.0, 0.0, 0.0),
             (1.0, -1.0, 1.0, 0.0),
@@ -57,13 +58,13 @@ fn reference_perspective_case() {
             (1.0, 1.0, 1.0, 1.0),
         ]
         .iter()
-        .map(|&(x, y, u, v)| wobble::mesh::MeshVertex {
+        .map(|&(x, y, u, v)| wobble::scene::mesh::MeshVertex {
             position: [x, y, 0.0],
             normal: [0.0, 0.0, -1.0],
             uv: [u, v],
         })
         .collect(),
-        faces: vec![wobble::mesh::MeshFace {
+        faces: vec![wobble::scene::mesh::MeshFace {
             indices: [0, 1, 2, 3],
             quad: true,
         }],
@@ -111,36 +112,5 @@ fn trade_face_on_accuracy_columns() {
     ] {
         let r = rows.iter().find(|r| r.name == name).unwrap();
         assert_eq!(r.texel_max, 0.0, "{name}");
-    }
-}
-
-/// `wobble trade` runs on a small scene and writes the table, images and plot.
-#[test]
-fn trade_command_writes_report() {
-    let out = std::env::temp_dir().join(format!("wobble-trade-{}", std::process::id()));
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_wobble"))
-        .args([
-            "trade",
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("../../fixtures/scenes/face-on.toml")
-                .to_str()
-                .unwrap(),
-            "--frames",
-            "2",
-            "--repeats",
-            "1",
-            "--sweep-step",
-            "4099",
-            "--out",
-            out.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let md = std::fs::read_to_string(out.join("trade.md")).unwrap();
-    assert!(md.contains("| hardware (UNR, snapped, affine, dither, tess 0) |"));
-    assert!(md.contains("| tessellation 4 |"));
-    for f in ["hardware-vs-reference.png", "tessellation-curve.png"] {
-        assert!(out.join("trade").join(f).exists(), "{f}");
     }
 }

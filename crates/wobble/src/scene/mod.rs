@@ -1,11 +1,18 @@
 //! Scenes: meshes, textures, objects, camera, light and screen, from a TOML file
-//! (docs/formats.md, "Scene files") or built in (the default scene).
+//! (docs/formats.md, "Scene files") or built in (the default scene), and their validation.
 
-use crate::mesh::{Mesh, MeshError};
-use crate::quantize::{Depth, Texture, TextureError};
+pub mod default;
+mod file;
+pub mod mesh;
+pub mod quantize;
+pub mod texture;
+pub mod vram_alloc;
+
+use mesh::{Mesh, MeshError};
 use serde::Deserialize;
 use std::fmt;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
+use texture::{InvalidTexture, Texture, TextureError};
 
 /// Screen set-up.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]
@@ -141,7 +148,7 @@ pub struct Object {
     /// Semi-transparency mode 0-3, when semi-transparent.
     pub blend: Option<u8>,
     /// Tessellation level 0..=4: how many times a large or near polygon may be split into
-    /// four before projection (`pipeline.rs`, `tessellate.rs`).
+    /// four before projection (`pipeline/mod.rs`, `pipeline/tessellate.rs`).
     pub tessellation: u8,
 }
 
@@ -164,7 +171,7 @@ pub struct MeshAsset {
 }
 
 /// The GTE divide a scene asks for (`[accuracy] divide`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Divide {
     /// The console's UNR divide.
@@ -224,104 +231,223 @@ pub struct Scene {
 /// Why a scene could not be loaded.
 #[derive(Debug)]
 pub enum SceneError {
-    /// Reading a file failed.
-    Io(PathBuf, std::io::Error),
+    /// Reading the scene file failed.
+    Io {
+        /// The scene file.
+        file: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// The TOML is malformed or has a bad field (the message names line and field).
-    Syntax(PathBuf, String),
+    Syntax {
+        /// The scene file.
+        file: PathBuf,
+        /// The parser's error.
+        source: toml::de::Error,
+    },
     /// A mesh failed to load or does not fit.
     Mesh(MeshError),
     /// A texture failed to load.
     Texture(TextureError),
     /// A value is out of range or refers to nothing.
-    Invalid(PathBuf, String),
+    Invalid {
+        /// The scene file.
+        file: PathBuf,
+        /// What is wrong.
+        source: InvalidScene,
+    },
 }
 
 impl fmt::Display for SceneError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SceneError::Io(p, e) => write!(f, "{}: {e}", p.display()),
-            SceneError::Syntax(p, e) => write!(f, "{}: {e}", p.display()),
+            SceneError::Io { file, source } => write!(f, "{}: {source}", file.display()),
+            SceneError::Syntax { file, source } => write!(f, "{}: {source}", file.display()),
             SceneError::Mesh(e) => write!(f, "{e}"),
             SceneError::Texture(e) => write!(f, "{e}"),
-            SceneError::Invalid(p, e) => write!(f, "{}: {e}", p.display()),
+            SceneError::Invalid { file, source } => write!(f, "{}: {source}", file.display()),
         }
     }
 }
 
-impl std::error::Error for SceneError {}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SceneFile {
-    #[serde(default)]
-    screen: Screen,
-    #[serde(default)]
-    camera: Camera,
-    light: Option<Light>,
-    fog: Option<Fog>,
-    #[serde(default)]
-    accuracy: Accuracy,
-    #[serde(default)]
-    tessellation: u8,
-    #[serde(default, rename = "texture")]
-    textures: Vec<TextureDef>,
-    #[serde(default, rename = "mesh")]
-    meshes: Vec<MeshDef>,
-    #[serde(default, rename = "object")]
-    objects: Vec<ObjectDef>,
+impl std::error::Error for SceneError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            SceneError::Io { source, .. } => Some(source),
+            SceneError::Syntax { source, .. } => Some(source),
+            SceneError::Mesh(e) => Some(e),
+            SceneError::Texture(e) => Some(e),
+            SceneError::Invalid { source, .. } => Some(source),
+        }
+    }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct TextureDef {
-    name: String,
-    /// PNG file, relative to the scene file.
-    file: Option<PathBuf>,
-    /// Built-in texture: "checker".
-    builtin: Option<String>,
-    #[serde(default = "default_depth")]
-    depth: Depth,
+/// A scene value out of range or a reference to nothing. Objects are numbered from 1.
+#[derive(Clone, Debug, PartialEq)]
+pub enum InvalidScene {
+    /// A built-in texture name that does not exist.
+    UnknownTextureBuiltin {
+        /// The texture's name.
+        texture: String,
+        /// The built-in asked for.
+        builtin: String,
+    },
+    /// A texture with both or neither of `file` and `builtin`.
+    TextureSource {
+        /// The texture's name.
+        texture: String,
+    },
+    /// A built-in mesh name that does not exist.
+    UnknownMeshBuiltin {
+        /// The mesh's name.
+        mesh: String,
+        /// The built-in asked for.
+        builtin: String,
+    },
+    /// A mesh with both or neither of `file` and `builtin`.
+    MeshSource {
+        /// The mesh's name.
+        mesh: String,
+    },
+    /// An object names a mesh that does not exist.
+    NoMesh {
+        /// Object number.
+        object: usize,
+        /// The name given.
+        mesh: String,
+    },
+    /// An object names a texture that does not exist.
+    NoTexture {
+        /// Object number.
+        object: usize,
+        /// The name given.
+        texture: String,
+    },
+    /// A semi-transparency mode above 3.
+    BlendMode {
+        /// Object number.
+        object: usize,
+        /// The mode given.
+        mode: u8,
+    },
+    /// `screen.width` is not one of the GPU's horizontal resolutions.
+    ScreenWidth(u16),
+    /// `screen.height` outside 1..=256.
+    ScreenHeight(u16),
+    /// `camera.h` is 0.
+    CameraH,
+    /// The fog range does not fit DQA/DQB.
+    Fog {
+        /// Near distance.
+        near: f64,
+        /// Far distance.
+        far: f64,
+    },
+    /// An object's tessellation level above [`MAX_TESSELLATION`].
+    Tessellation {
+        /// Object number.
+        object: usize,
+        /// The level given.
+        level: u8,
+    },
+    /// An object's position, rotation or spin is not finite.
+    ObjectNotFinite {
+        /// Object number.
+        object: usize,
+    },
+    /// An object's position is beyond +-1000000 units.
+    ObjectPosition {
+        /// Object number.
+        object: usize,
+    },
+    /// An object's mesh or texture index is past the lists.
+    ObjectIndex {
+        /// Object number.
+        object: usize,
+    },
+    /// A texture's fields do not agree.
+    Texture {
+        /// The texture's name.
+        texture: String,
+        /// What is wrong.
+        source: InvalidTexture,
+    },
+    /// The camera's numbers are not finite or beyond +-1000000.
+    Camera,
 }
 
-fn default_depth() -> Depth {
-    Depth::Clut4
+impl fmt::Display for InvalidScene {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InvalidScene::UnknownTextureBuiltin { texture, builtin } => write!(
+                f,
+                "texture `{texture}`: unknown builtin `{builtin}` (known: checker)"
+            ),
+            InvalidScene::TextureSource { texture } => write!(
+                f,
+                "texture `{texture}`: give exactly one of `file` and `builtin`"
+            ),
+            InvalidScene::UnknownMeshBuiltin { mesh, builtin } => write!(
+                f,
+                "mesh `{mesh}`: unknown builtin `{builtin}` (known: cube, grid, sphere)"
+            ),
+            InvalidScene::MeshSource { mesh } => {
+                write!(f, "mesh `{mesh}`: give exactly one of `file` and `builtin`")
+            }
+            InvalidScene::NoMesh { object, mesh } => {
+                write!(f, "object {object}: no mesh named `{mesh}`")
+            }
+            InvalidScene::NoTexture { object, texture } => {
+                write!(f, "object {object}: no texture named `{texture}`")
+            }
+            InvalidScene::BlendMode { object, mode } => write!(
+                f,
+                "object {object}: semi_transparent must be a mode 0-3, got {mode}"
+            ),
+            InvalidScene::ScreenWidth(w) => write!(
+                f,
+                "screen.width must be one of 256, 320, 368, 512, 640, got {w}"
+            ),
+            InvalidScene::ScreenHeight(h) => write!(
+                f,
+                "screen.height must be 1..=256 (two buffers share VRAM), got {h}"
+            ),
+            InvalidScene::CameraH => write!(f, "camera.h must be positive"),
+            InvalidScene::Fog { near, far } => write!(
+                f,
+                "fog: need 1 <= near < far with the range wide enough for DQA (16 bits), got \
+                 near = {near}, far = {far}"
+            ),
+            InvalidScene::Tessellation { object, level } => write!(
+                f,
+                "object {object}: tessellation must be 0..=4, got {level}"
+            ),
+            InvalidScene::ObjectNotFinite { object } => {
+                write!(f, "object {object}: numbers must be finite")
+            }
+            InvalidScene::ObjectPosition { object } => {
+                write!(f, "object {object}: position beyond +-1000000 units")
+            }
+            InvalidScene::ObjectIndex { object } => {
+                write!(f, "object {object}: mesh or texture index out of range")
+            }
+            InvalidScene::Texture { texture, source } => {
+                write!(f, "texture `{texture}`: {source}")
+            }
+            InvalidScene::Camera => {
+                write!(f, "camera: numbers must be finite and within +-1000000")
+            }
+        }
+    }
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MeshDef {
-    name: String,
-    /// OBJ file, relative to the scene file.
-    file: Option<PathBuf>,
-    /// Built-in mesh: "cube", "grid", "sphere".
-    builtin: Option<String>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObjectDef {
-    mesh: String,
-    texture: Option<String>,
-    #[serde(default)]
-    position: [f64; 3],
-    #[serde(default)]
-    rotation: [f64; 3],
-    #[serde(default)]
-    spin: [f64; 3],
-    #[serde(default = "one")]
-    scale: f64,
-    #[serde(default = "grey")]
-    color: [u8; 3],
-    semi_transparent: Option<u8>,
-    tessellation: Option<u8>,
-}
-
-fn one() -> f64 {
-    1.0
-}
-
-fn grey() -> [u8; 3] {
-    [128, 128, 128]
+impl std::error::Error for InvalidScene {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            InvalidScene::Texture { source, .. } => Some(source),
+            _ => None,
+        }
+    }
 }
 
 /// The horizontal resolutions the GPU offers (GP1(08h)).
@@ -330,180 +456,59 @@ pub const WIDTHS: [u16; 5] = [256, 320, 368, 512, 640];
 pub const MAX_TESSELLATION: u8 = 4;
 
 impl Scene {
-    /// Load a TOML scene; relative file names are resolved against its directory.
-    pub fn load(path: &Path) -> Result<Scene, SceneError> {
-        let text =
-            std::fs::read_to_string(path).map_err(|e| SceneError::Io(path.to_path_buf(), e))?;
-        let file: SceneFile = toml::from_str(&text)
-            .map_err(|e| SceneError::Syntax(path.to_path_buf(), e.to_string()))?;
-        let dir = path.parent().unwrap_or(Path::new("."));
-        let invalid = |m: String| SceneError::Invalid(path.to_path_buf(), m);
-        let mut textures = Vec::new();
-        for t in &file.textures {
-            let texture = match (&t.file, &t.builtin) {
-                (Some(f), None) => {
-                    Texture::load_png(&dir.join(f), t.depth).map_err(SceneError::Texture)?
-                }
-                (None, Some(b)) if b == "checker" => {
-                    Texture::checker(64, 8, [232, 232, 224], [200, 40, 48])
-                }
-                (None, Some(b)) => {
-                    return Err(invalid(format!(
-                        "texture `{}`: unknown builtin `{b}` (known: checker)",
-                        t.name
-                    )));
-                }
-                _ => {
-                    return Err(invalid(format!(
-                        "texture `{}`: give exactly one of `file` and `builtin`",
-                        t.name
-                    )));
-                }
-            };
-            textures.push(TextureAsset {
-                name: t.name.clone(),
-                texture,
-            });
-        }
-        let mut meshes = Vec::new();
-        for m in &file.meshes {
-            let mesh = match (&m.file, &m.builtin) {
-                (Some(f), None) => Mesh::load_obj(&dir.join(f)).map_err(SceneError::Mesh)?,
-                (None, Some(b)) => match b.as_str() {
-                    "cube" => Mesh::cube(1.0),
-                    "grid" => Mesh::grid(2.0, 8, 4.0),
-                    "sphere" => Mesh::sphere(1.0, 16, 24),
-                    _ => {
-                        return Err(invalid(format!(
-                            "mesh `{}`: unknown builtin `{b}` (known: cube, grid, sphere)",
-                            m.name
-                        )));
-                    }
-                },
-                _ => {
-                    return Err(invalid(format!(
-                        "mesh `{}`: give exactly one of `file` and `builtin`",
-                        m.name
-                    )));
-                }
-            };
-            meshes.push(MeshAsset {
-                name: m.name.clone(),
-                mesh,
-            });
-        }
-        let mut objects = Vec::new();
-        for (i, o) in file.objects.iter().enumerate() {
-            let mesh = meshes
-                .iter()
-                .position(|m| m.name == o.mesh)
-                .ok_or_else(|| invalid(format!("object {}: no mesh named `{}`", i + 1, o.mesh)))?;
-            let texture = match &o.texture {
-                None => None,
-                Some(name) => Some(textures.iter().position(|t| &t.name == name).ok_or_else(
-                    || invalid(format!("object {}: no texture named `{name}`", i + 1)),
-                )?),
-            };
-            meshes[mesh]
-                .mesh
-                .check_scale(&format!("object {} (mesh `{}`)", i + 1, o.mesh), o.scale)
-                .map_err(SceneError::Mesh)?;
-            if let Some(b) = o.semi_transparent
-                && b > 3
-            {
-                return Err(invalid(format!(
-                    "object {}: semi_transparent must be a mode 0-3, got {b}",
-                    i + 1
-                )));
-            }
-            objects.push(Object {
-                mesh,
-                texture,
-                position: o.position,
-                rotation: o.rotation,
-                spin: o.spin,
-                scale: o.scale,
-                color: o.color,
-                blend: o.semi_transparent,
-                tessellation: o.tessellation.unwrap_or(file.tessellation),
-            });
-        }
-        let scene = Scene {
-            screen: file.screen,
-            camera: file.camera,
-            light: file.light,
-            fog: file.fog,
-            accuracy: file.accuracy,
-            textures,
-            meshes,
-            objects,
-        };
-        scene.validate().map_err(invalid)?;
-        Ok(scene)
-    }
-
     /// Check ranges: screen size, tessellation, camera H, finite numbers.
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), InvalidScene> {
         if !WIDTHS.contains(&self.screen.width) {
-            return Err(format!(
-                "screen.width must be one of 256, 320, 368, 512, 640, got {}",
-                self.screen.width
-            ));
+            return Err(InvalidScene::ScreenWidth(self.screen.width));
         }
         if self.screen.height == 0 || self.screen.height > 256 {
-            return Err(format!(
-                "screen.height must be 1..=256 (two buffers share VRAM), got {}",
-                self.screen.height
-            ));
+            return Err(InvalidScene::ScreenHeight(self.screen.height));
         }
         if self.camera.h == 0 {
-            return Err("camera.h must be positive".into());
+            return Err(InvalidScene::CameraH);
         }
         if let Some(fog) = &self.fog
             && fog.coefficients(self.camera.h).is_none()
         {
-            return Err(format!(
-                "fog: need 1 <= near < far with the range wide enough for DQA (16 bits), got \
-                 near = {}, far = {}",
-                fog.near, fog.far
-            ));
+            return Err(InvalidScene::Fog {
+                near: fog.near,
+                far: fog.far,
+            });
         }
         for (i, o) in self.objects.iter().enumerate() {
+            let object = i + 1;
             if o.tessellation > MAX_TESSELLATION {
-                return Err(format!(
-                    "object {}: tessellation must be 0..=4, got {}",
-                    i + 1,
-                    o.tessellation
-                ));
+                return Err(InvalidScene::Tessellation {
+                    object,
+                    level: o.tessellation,
+                });
             }
             let numbers = o.position.iter().chain(&o.rotation).chain(&o.spin);
             if numbers.clone().any(|v| !v.is_finite()) {
-                return Err(format!("object {}: numbers must be finite", i + 1));
+                return Err(InvalidScene::ObjectNotFinite { object });
             }
             if o.position.iter().any(|v| v.abs() > 1e6) {
-                return Err(format!("object {}: position beyond +-1000000 units", i + 1));
+                return Err(InvalidScene::ObjectPosition { object });
             }
             if o.mesh >= self.meshes.len() || o.texture.is_some_and(|t| t >= self.textures.len()) {
-                return Err(format!(
-                    "object {}: mesh or texture index out of range",
-                    i + 1
-                ));
+                return Err(InvalidScene::ObjectIndex { object });
             }
         }
         for t in &self.textures {
-            t.texture
-                .check()
-                .map_err(|e| format!("texture `{}`: {e}", t.name))?;
+            t.texture.check().map_err(|source| InvalidScene::Texture {
+                texture: t.name.clone(),
+                source,
+            })?;
         }
         let cam = self.camera.position.iter().chain(&self.camera.rotation);
         if cam.clone().any(|v| !v.is_finite() || v.abs() > 1e6) {
-            return Err("camera: numbers must be finite and within +-1000000".into());
+            return Err(InvalidScene::Camera);
         }
         Ok(())
     }
 
-    /// The built-in scene (`default_scene.rs`).
+    /// The built-in scene (`scene/default.rs`).
     pub fn default_scene() -> Scene {
-        crate::default_scene::default_scene()
+        default::default_scene()
     }
 }

@@ -1,10 +1,10 @@
 //! `wobble render`: the scene pipeline driven from the command line.
 
-use crate::pipeline::{FrameStats, PipelineOptions, Renderer};
-use crate::scene::{Scene, WIDTHS};
 use indicatif::{ProgressBar, ProgressStyle};
 use std::path::PathBuf;
 use std::time::Instant;
+use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
+use wobble::scene::{Divide, Scene, WIDTHS};
 
 /// Most frames one command renders.
 pub const MAX_FRAMES: u32 = 100_000;
@@ -35,20 +35,41 @@ pub struct RenderArgs {
     pub tessellation: Option<u8>,
     /// Split polygons larger than this many pixels on screen, up to the tessellation level
     /// (0: split every polygon to the full level).
-    #[arg(long, default_value_t = crate::pipeline::DEFAULT_SPLIT_EXTENT)]
+    #[arg(long, default_value_t = wobble::pipeline::DEFAULT_SPLIT_EXTENT)]
     pub split_extent: u16,
     /// Turn dithering off.
     #[arg(long)]
     pub no_dither: bool,
     /// GTE divide (non-hardware: exact, f32); overrides the scene's `[accuracy] divide`.
     #[arg(long, value_enum)]
-    pub divide: Option<crate::scene::Divide>,
+    pub divide: Option<DivideArg>,
     /// Non-hardware: sub-pixel vertex positions.
     #[arg(long)]
     pub subpixel: bool,
     /// Non-hardware: perspective-correct texture coordinates.
     #[arg(long)]
     pub perspective_uv: bool,
+}
+
+/// The GTE divide, as `--divide` takes it (the scene's `[accuracy] divide`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum DivideArg {
+    /// The console's UNR divide.
+    Unr,
+    /// Exact rounded division (non-hardware).
+    Exact,
+    /// f32 division (non-hardware).
+    F32,
+}
+
+impl From<DivideArg> for Divide {
+    fn from(d: DivideArg) -> Divide {
+        match d {
+            DivideArg::Unr => Divide::Unr,
+            DivideArg::Exact => Divide::Exact,
+            DivideArg::F32 => Divide::F32,
+        }
+    }
 }
 
 /// Parse `WxH`.
@@ -94,7 +115,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         tessellation: args.tessellation,
         dither: args.no_dither.then_some(false),
         split_extent: args.split_extent,
-        divide_mode: args.divide.unwrap_or(accuracy.divide).into(),
+        divide_mode: args.divide.map_or(accuracy.divide, Divide::from).into(),
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };

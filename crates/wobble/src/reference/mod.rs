@@ -8,9 +8,9 @@
 //! samples the scene at its integer coordinate, and the texel chosen is the nearest,
 //! `floor(u + 0.5)` (the GPU's +0.5 bias then truncation).
 
+use crate::pipeline::tessellate::{PreparedVertex, UV_FRACTION_BITS};
 use crate::pipeline::{object_rotation, prepare};
 use crate::scene::Scene;
-use crate::tessellate::{PreparedVertex, UV_FRACTION_BITS};
 use gte::typed::Vector3;
 
 /// A GTE vertex as f64.
@@ -228,7 +228,7 @@ fn expand(c: u16) -> f64 {
 fn raster(
     t: [&ScreenVertex; 3],
     (width, height): (usize, usize),
-    texture: Option<&crate::quantize::Texture>,
+    texture: Option<&crate::scene::texture::Texture>,
     rgb: &mut [[u8; 3]],
     texel: &mut [Option<(i32, i32)>],
     texture_size: &mut [Option<(i32, i32)>],

@@ -3,10 +3,105 @@
 
 use gte::{Gte, REGISTER_NAMES};
 use serde_json::Value;
+use std::fmt;
 use std::fmt::Write as _;
 
+/// What is wrong with one line of a vector file.
+#[derive(Debug)]
+pub enum VectorError {
+    /// The line is not JSON.
+    NotJson(serde_json::Error),
+    /// The line is JSON but not an object.
+    NotObject,
+    /// A value that must be a 32-bit unsigned integer is not (`what` names it).
+    NotInteger {
+        /// The field and index.
+        what: String,
+    },
+    /// A register array without exactly 32 values.
+    RegisterCount {
+        /// The field.
+        field: &'static str,
+        /// Values present.
+        count: usize,
+    },
+    /// A register field that is not an array.
+    NotArray {
+        /// The field.
+        field: &'static str,
+    },
+    /// A `writes` entry that is not a `[reg, value]` pair.
+    NotPair {
+        /// Index in `writes`.
+        index: usize,
+    },
+    /// A `writes` register index outside 0..=63.
+    RegisterIndex {
+        /// Index in `writes`.
+        index: usize,
+    },
+    /// A required field is absent.
+    Missing {
+        /// The field.
+        field: &'static str,
+    },
+}
+
+impl fmt::Display for VectorError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            VectorError::NotJson(e) => write!(f, "not JSON: {e}"),
+            VectorError::NotObject => write!(f, "not a JSON object"),
+            VectorError::NotInteger { what } => {
+                write!(f, "{what} is not an integer in 0..=4294967295")
+            }
+            VectorError::RegisterCount { field, count } => {
+                write!(f, "`{field}` has {count} values, expected 32")
+            }
+            VectorError::NotArray { field } => write!(f, "`{field}` is not an array"),
+            VectorError::NotPair { index } => {
+                write!(f, "`writes`[{index}] is not a [reg, value] pair")
+            }
+            VectorError::RegisterIndex { index } => {
+                write!(f, "`writes`[{index}]: register index must be 0..=63")
+            }
+            VectorError::Missing { field } => write!(f, "missing `{field}`"),
+        }
+    }
+}
+
+impl std::error::Error for VectorError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            VectorError::NotJson(e) => Some(e),
+            _ => None,
+        }
+    }
+}
+
+/// A malformed line of a vector file, with its 1-based number.
+#[derive(Debug)]
+pub struct ReplayError {
+    /// Line number.
+    pub line: usize,
+    /// What is wrong.
+    pub error: VectorError,
+}
+
+impl fmt::Display for ReplayError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "line {}: {}", self.line, self.error)
+    }
+}
+
+impl std::error::Error for ReplayError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
 /// Outcome of a replay: counts and the text to print.
-#[derive(Debug, Default, Clone, PartialEq, Eq)]
+#[derive(Debug, Default)]
 pub struct ReplayOutcome {
     /// Vectors whose 64 registers all matched (or, when emitting, that ran).
     pub passed: usize,
@@ -15,7 +110,7 @@ pub struct ReplayOutcome {
     /// Report lines (failures; or, when emitting, one JSON object per vector).
     pub output: Vec<String>,
     /// Malformed input lines, each naming its line number.
-    pub errors: Vec<String>,
+    pub errors: Vec<ReplayError>,
 }
 
 /// A vector as read from one line.
@@ -26,18 +121,21 @@ struct Vector {
     expected: Option<[u32; 64]>,
 }
 
-fn u32_field(v: &Value, what: &str) -> Result<u32, String> {
+fn u32_field(v: &Value, what: &str) -> Result<u32, VectorError> {
     v.as_u64()
         .and_then(|n| u32::try_from(n).ok())
-        .ok_or_else(|| format!("{what} is not an integer in 0..=4294967295"))
+        .ok_or_else(|| VectorError::NotInteger { what: what.into() })
 }
 
-fn registers(v: &Value, field: &str) -> Result<Option<Vec<u32>>, String> {
+fn registers(v: &Value, field: &'static str) -> Result<Option<Vec<u32>>, VectorError> {
     match v.get(field) {
         None | Some(Value::Null) => Ok(None),
         Some(Value::Array(items)) => {
             if items.len() != 32 {
-                return Err(format!("`{field}` has {} values, expected 32", items.len()));
+                return Err(VectorError::RegisterCount {
+                    field,
+                    count: items.len(),
+                });
             }
             items
                 .iter()
@@ -46,13 +144,13 @@ fn registers(v: &Value, field: &str) -> Result<Option<Vec<u32>>, String> {
                 .collect::<Result<Vec<_>, _>>()
                 .map(Some)
         }
-        Some(_) => Err(format!("`{field}` is not an array")),
+        Some(_) => Err(VectorError::NotArray { field }),
     }
 }
 
-fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, String> {
+fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, VectorError> {
     if !v.is_object() {
-        return Err("not a JSON object".into());
+        return Err(VectorError::NotObject);
     }
     let name = match v.get("name") {
         Some(Value::String(s)) => s.clone(),
@@ -69,28 +167,28 @@ fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, String> {
                 let pair = w
                     .as_array()
                     .filter(|p| p.len() == 2)
-                    .ok_or_else(|| format!("`writes`[{i}] is not a [reg, value] pair"))?;
+                    .ok_or(VectorError::NotPair { index: i })?;
                 let reg = pair[0]
                     .as_u64()
                     .filter(|r| *r < 64)
-                    .ok_or_else(|| format!("`writes`[{i}]: register index must be 0..=63"))?;
+                    .ok_or(VectorError::RegisterIndex { index: i })?;
                 let value = u32_field(&pair[1], &format!("`writes`[{i}] value"))?;
                 writes.push((reg as usize, value));
             }
             writes
         }
-        Some(_) => return Err("`writes` is not an array".into()),
+        Some(_) => return Err(VectorError::NotArray { field: "writes" }),
         None => {
-            let data = registers(v, "in_data")?.ok_or("missing `in_data`")?;
-            let ctrl = registers(v, "in_ctrl")?.ok_or("missing `in_ctrl`")?;
+            let data = registers(v, "in_data")?.ok_or(VectorError::Missing { field: "in_data" })?;
+            let ctrl = registers(v, "in_ctrl")?.ok_or(VectorError::Missing { field: "in_ctrl" })?;
             data.into_iter().chain(ctrl).enumerate().collect()
         }
     };
     let expected = if emit {
         None
     } else {
-        let data = registers(v, "out_data")?.ok_or("missing `out_data`")?;
-        let ctrl = registers(v, "out_ctrl")?.ok_or("missing `out_ctrl`")?;
+        let data = registers(v, "out_data")?.ok_or(VectorError::Missing { field: "out_data" })?;
+        let ctrl = registers(v, "out_ctrl")?.ok_or(VectorError::Missing { field: "out_ctrl" })?;
         let mut all = [0u32; 64];
         for (slot, value) in all.iter_mut().zip(data.into_iter().chain(ctrl)) {
             *slot = value;
@@ -109,13 +207,14 @@ fn parse_vector(v: &Value, line: usize, emit: bool) -> Result<Vector, String> {
 fn run(vector: &Vector) -> [u32; 64] {
     let mut gte = Gte::new();
     for &(reg, value) in &vector.writes {
-        gte.write(reg, value);
+        // Register indices are below 64 (checked on parse).
+        gte.write(reg as u32, value);
     }
     if let Some(cmd) = vector.cmd {
         gte.execute(cmd);
     }
     let mut out = [0u32; 64];
-    for (reg, slot) in out.iter_mut().enumerate() {
+    for (reg, slot) in (0..).zip(out.iter_mut()) {
         *slot = gte.read(reg);
     }
     out
@@ -132,12 +231,15 @@ pub fn replay(text: &str, emit: bool) -> ReplayOutcome {
             continue;
         }
         let vector = serde_json::from_str::<Value>(line)
-            .map_err(|e| format!("not JSON: {e}"))
+            .map_err(VectorError::NotJson)
             .and_then(|v| parse_vector(&v, number, emit));
         let vector = match vector {
             Ok(v) => v,
             Err(e) => {
-                outcome.errors.push(format!("line {number}: {e}"));
+                outcome.errors.push(ReplayError {
+                    line: number,
+                    error: e,
+                });
                 outcome.failed += 1;
                 continue;
             }
@@ -215,8 +317,8 @@ mod tests {
         let text = "not json\n{\"name\":\"x\",\"writes\":[[64,1]]}\n\n{\"writes\":[]}";
         let out = replay(text, true);
         assert_eq!(out.failed, 2);
-        assert!(out.errors[0].starts_with("line 1:"));
-        assert!(out.errors[1].starts_with("line 2:"));
+        assert!(out.errors[0].to_string().starts_with("line 1: not JSON"));
+        assert!(out.errors[1].to_string().starts_with("line 2:"));
         assert_eq!(out.passed, 1);
     }
 }

@@ -1,17 +1,9 @@
-//! Texture preparation: RGBA images to 4-bit or 8-bit CLUT textures, or 15-bit direct ones,
-//! in the GPU's 1555 format (gpu.md §1, §7).
-//!
-//! An image that already has few enough colours keeps them exactly (after the 8-to-5-bit
-//! reduction): NeuQuant learns its palette from a sample of the pixels and moves every entry
-//! towards its neighbours, so even an image with only 16 colours would come back with
-//! slightly different ones (and its network is not tuned below about 26 entries); pixel art
-//! and textures already drawn to a palette, the usual PS1 material, must survive unchanged.
-//! Otherwise the palette is chosen by NeuQuant from the `color_quant` crate (maintained by
-//! the image-rs project, no dependencies, good palettes for photographic input at small
-//! sizes; it is also what `image`'s GIF encoder uses).
+//! Textures: RGBA images prepared as 4-bit or 8-bit CLUT textures, or 15-bit direct ones,
+//! in the GPU's 1555 format (gpu.md §1, §7); the palette choice is in `quantize`.
 
+use super::quantize;
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Texture colour depth.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
@@ -25,14 +17,26 @@ pub enum Depth {
     Direct15,
 }
 
+/// A texture depth other than 4, 8 or 15 (16 is taken as 15).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthError(pub u8);
+
+impl fmt::Display for DepthError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "texture depth must be 4, 8 or 15, got {}", self.0)
+    }
+}
+
+impl std::error::Error for DepthError {}
+
 impl TryFrom<u8> for Depth {
-    type Error = String;
-    fn try_from(v: u8) -> Result<Self, String> {
+    type Error = DepthError;
+    fn try_from(v: u8) -> Result<Self, DepthError> {
         match v {
             4 => Ok(Depth::Clut4),
             8 => Ok(Depth::Clut8),
             15 | 16 => Ok(Depth::Direct15),
-            _ => Err(format!("texture depth must be 4, 8 or 15, got {v}")),
+            _ => Err(DepthError(v)),
         }
     }
 }
@@ -91,22 +95,146 @@ pub struct Texture {
     pub clut: Vec<u16>,
 }
 
-/// Why a texture could not be prepared.
+/// Why texture fields or pixels do not make a valid texture.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum InvalidTexture {
+    /// Pixels given for a size outside 1..=256 a side, or not `width * height` of them.
+    Pixels {
+        /// Width asked for.
+        width: u16,
+        /// Height asked for.
+        height: u16,
+        /// Pixels given.
+        pixels: usize,
+    },
+    /// A side outside 1..=256: larger than a texture page.
+    Size {
+        /// Width.
+        width: usize,
+        /// Height.
+        height: usize,
+    },
+    /// The texel count is not `width * height`.
+    Texels {
+        /// Width.
+        width: usize,
+        /// Height.
+        height: usize,
+        /// Texels present.
+        texels: usize,
+    },
+    /// The CLUT length does not match the depth.
+    ClutLength {
+        /// The depth in bits (4, 8 or 15).
+        bits: u8,
+        /// Entries the depth needs.
+        needed: usize,
+        /// Entries present.
+        has: usize,
+    },
+    /// A texel indexes past the end of the CLUT.
+    IndexBeyondClut {
+        /// CLUT entries.
+        limit: usize,
+    },
+}
+
+impl fmt::Display for InvalidTexture {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InvalidTexture::Pixels {
+                width,
+                height,
+                pixels,
+            } => write!(
+                f,
+                "{width}x{height} texture with {pixels} pixels is not a valid texture"
+            ),
+            InvalidTexture::Size { width, height } => {
+                write!(f, "{width}x{height} does not fit a 256x256 texture page")
+            }
+            InvalidTexture::Texels {
+                width,
+                height,
+                texels,
+            } => write!(f, "{width}x{height} texture has {texels} texels"),
+            InvalidTexture::ClutLength { bits, needed, has } => write!(
+                f,
+                "a {bits}-bit texture needs {needed} CLUT entries, has {has}"
+            ),
+            InvalidTexture::IndexBeyondClut { limit } => {
+                write!(f, "texel index beyond the {limit}-entry CLUT")
+            }
+        }
+    }
+}
+
+impl std::error::Error for InvalidTexture {}
+
+/// Why a texture file could not be prepared; every variant names the file.
 #[derive(Debug)]
-pub struct TextureError {
-    /// The file or built-in name.
-    pub source: String,
-    /// What went wrong.
-    pub message: String,
+pub enum TextureError {
+    /// Opening the file or guessing its format failed.
+    Io {
+        /// The file.
+        file: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Decoding the image failed.
+    Decode {
+        /// The file.
+        file: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
+    /// The image is larger than a texture page.
+    TooLarge {
+        /// The file.
+        file: PathBuf,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+    },
+    /// The pixels do not make a valid texture.
+    Invalid {
+        /// The file.
+        file: PathBuf,
+        /// What is wrong.
+        source: InvalidTexture,
+    },
 }
 
 impl fmt::Display for TextureError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.source, self.message)
+        match self {
+            TextureError::Io { file, source } => write!(f, "{}: {source}", file.display()),
+            TextureError::Decode { file, source } => write!(f, "{}: {source}", file.display()),
+            TextureError::TooLarge {
+                file,
+                width,
+                height,
+            } => write!(
+                f,
+                "{}: {width}x{height} does not fit a 256x256 texture page; scale it down first",
+                file.display()
+            ),
+            TextureError::Invalid { file, source } => write!(f, "{}: {source}", file.display()),
+        }
     }
 }
 
-impl std::error::Error for TextureError {}
+impl std::error::Error for TextureError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TextureError::Io { source, .. } => Some(source),
+            TextureError::Decode { source, .. } => Some(source),
+            TextureError::TooLarge { .. } => None,
+            TextureError::Invalid { source, .. } => Some(source),
+        }
+    }
+}
 
 /// 8-bit RGBA to a 1555 texel: alpha below 128 is transparent (0000h); pure black becomes
 /// 8000h, which the GPU draws as opaque black (0000h would be transparent).
@@ -124,25 +252,35 @@ impl Texture {
 
     /// Load a PNG and prepare it at `depth`.
     pub fn load_png(path: &Path, depth: Depth) -> Result<Texture, TextureError> {
-        let err = |message: String| TextureError {
-            source: path.display().to_string(),
-            message,
+        let file = || path.to_path_buf();
+        let io = |source| TextureError::Io {
+            file: file(),
+            source,
+        };
+        let decode = |source| TextureError::Decode {
+            file: file(),
+            source,
         };
         let reader = image::ImageReader::open(path)
-            .map_err(|e| err(e.to_string()))?
+            .map_err(io)?
             .with_guessed_format()
-            .map_err(|e| err(e.to_string()))?;
-        let (w, h) = reader.into_dimensions().map_err(|e| err(e.to_string()))?;
+            .map_err(io)?;
+        let (w, h) = reader.into_dimensions().map_err(decode)?;
         if w == 0 || h == 0 || w > Self::MAX_SIDE || h > Self::MAX_SIDE {
-            return Err(err(format!(
-                "{w}x{h} does not fit a 256x256 texture page; scale it down first"
-            )));
+            return Err(TextureError::TooLarge {
+                file: file(),
+                width: w,
+                height: h,
+            });
         }
-        let img = image::open(path)
-            .map_err(|e| err(e.to_string()))?
-            .to_rgba8();
+        let img = image::open(path).map_err(decode)?.to_rgba8();
         let pixels: Vec<[u8; 4]> = img.pixels().map(|p| p.0).collect();
-        Self::from_rgba(w as u16, h as u16, &pixels, depth).map_err(err)
+        Self::from_rgba(w as u16, h as u16, &pixels, depth).map_err(|source| {
+            TextureError::Invalid {
+                file: file(),
+                source,
+            }
+        })
     }
 
     /// Prepare RGBA pixels (row-major, `width * height` of them) at `depth`.
@@ -151,13 +289,14 @@ impl Texture {
         height: u16,
         pixels: &[[u8; 4]],
         depth: Depth,
-    ) -> Result<Texture, String> {
+    ) -> Result<Texture, InvalidTexture> {
         let (w, h) = (width as usize, height as usize);
         if w == 0 || h == 0 || w > 256 || h > 256 || pixels.len() != w * h {
-            return Err(format!(
-                "{width}x{height} texture with {} pixels is not a valid texture",
-                pixels.len()
-            ));
+            return Err(InvalidTexture::Pixels {
+                width,
+                height,
+                pixels: pixels.len(),
+            });
         }
         let colors: Vec<u16> = pixels.iter().map(|&p| to_1555(p)).collect();
         if depth == Depth::Direct15 {
@@ -170,18 +309,7 @@ impl Texture {
             });
         }
         let size = depth.clut_len();
-        let mut distinct: Vec<u16> = colors.clone();
-        distinct.sort_unstable();
-        distinct.dedup();
-        let (clut, texels) = if distinct.len() <= size {
-            let texels = colors
-                .iter()
-                .map(|c| distinct.binary_search(c).unwrap_or(0) as u16)
-                .collect();
-            (distinct, texels)
-        } else {
-            Self::neuquant(pixels, &colors, size)
-        };
+        let (clut, texels) = quantize::palette(pixels, &colors, size);
         let mut clut = clut;
         clut.resize(size, 0);
         Ok(Texture {
@@ -191,34 +319,6 @@ impl Texture {
             texels,
             clut,
         })
-    }
-
-    /// NeuQuant palette for the opaque pixels; transparent pixels keep entry 0 = 0000h.
-    fn neuquant(pixels: &[[u8; 4]], colors: &[u16], size: usize) -> (Vec<u16>, Vec<u16>) {
-        let has_transparent = colors.contains(&0);
-        let slots = if has_transparent { size - 1 } else { size };
-        let rgba: Vec<u8> = pixels
-            .iter()
-            .filter(|p| p[3] >= 128)
-            .flat_map(|p| [p[0], p[1], p[2], 255])
-            .collect();
-        let nq = color_quant::NeuQuant::new(10, slots, &rgba);
-        let offset = usize::from(has_transparent);
-        let mut clut = vec![0u16; offset];
-        for chunk in nq.color_map_rgba().chunks_exact(4) {
-            clut.push(to_1555([chunk[0], chunk[1], chunk[2], 255]));
-        }
-        let texels = pixels
-            .iter()
-            .map(|p| {
-                if p[3] < 128 {
-                    0
-                } else {
-                    (nq.index_of(&[p[0], p[1], p[2], 255]) + offset) as u16
-                }
-            })
-            .collect();
-        (clut, texels)
     }
 
     /// A checkerboard of `size` x `size` texels with `cells` squares a side in two colours,
@@ -249,25 +349,31 @@ impl Texture {
 
     /// Check the fields agree: sides 1..=256, one texel per pixel, texel values within the
     /// depth, a CLUT of 16 or 256 entries for CLUT depths and none for direct colour.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), InvalidTexture> {
         let (w, h) = (self.width as usize, self.height as usize);
         if w == 0 || h == 0 || w > 256 || h > 256 {
-            return Err(format!("{w}x{h} does not fit a 256x256 texture page"));
+            return Err(InvalidTexture::Size {
+                width: w,
+                height: h,
+            });
         }
         if self.texels.len() != w * h {
-            return Err(format!("{w}x{h} texture has {} texels", self.texels.len()));
+            return Err(InvalidTexture::Texels {
+                width: w,
+                height: h,
+                texels: self.texels.len(),
+            });
         }
         if self.clut.len() != self.depth.clut_len() {
-            return Err(format!(
-                "a {}-bit texture needs {} CLUT entries, has {}",
-                u8::from(self.depth),
-                self.depth.clut_len(),
-                self.clut.len()
-            ));
+            return Err(InvalidTexture::ClutLength {
+                bits: u8::from(self.depth),
+                needed: self.depth.clut_len(),
+                has: self.clut.len(),
+            });
         }
         let limit = self.depth.clut_len();
         if limit > 0 && self.texels.iter().any(|&t| t as usize >= limit) {
-            return Err(format!("texel index beyond the {limit}-entry CLUT"));
+            return Err(InvalidTexture::IndexBeyondClut { limit });
         }
         Ok(())
     }

@@ -3,9 +3,9 @@
 //! texture warp along the floor quads' split diagonals is plain to see; 4-bit CLUT textures,
 //! one directional light (Gouraud through NCCT/NCCS), dithering on.
 
-use crate::mesh::Mesh;
-use crate::quantize::Texture;
-use crate::scene::{Camera, Light, MeshAsset, Object, Scene, Screen, TextureAsset};
+use super::mesh::Mesh;
+use super::texture::Texture;
+use super::{Camera, Light, MeshAsset, Object, Scene, Screen, TextureAsset};
 
 /// The built-in scene.
 pub fn default_scene() -> Scene {

@@ -4,7 +4,7 @@
 //! most 256); texture pages (64-halfword columns, rows at y = 0 and 256) to the right of the
 //! buffers; CLUTs in the lines below the second buffer (x multiple of 16).
 
-use crate::quantize::Texture;
+use super::texture::Texture;
 use std::fmt;
 
 /// Where a texture and its CLUT went.
@@ -31,20 +31,35 @@ impl Placement {
     }
 }
 
-/// VRAM is full.
+/// VRAM has no room left for a texture or its CLUT.
 #[derive(Debug, Clone, PartialEq, Eq)]
-pub struct VramFull {
-    /// What did not fit.
-    pub what: String,
+pub enum VramAllocError {
+    /// No texture-page slot for the texture.
+    Texture {
+        /// The texture's name.
+        name: String,
+    },
+    /// No CLUT slot for the texture's CLUT.
+    Clut {
+        /// The texture's name.
+        name: String,
+    },
 }
 
-impl fmt::Display for VramFull {
+impl fmt::Display for VramAllocError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "VRAM full: no room for {}", self.what)
+        match self {
+            VramAllocError::Texture { name } => {
+                write!(f, "VRAM full: no room for texture `{name}`")
+            }
+            VramAllocError::Clut { name } => {
+                write!(f, "VRAM full: no room for the CLUT of texture `{name}`")
+            }
+        }
     }
 }
 
-impl std::error::Error for VramFull {}
+impl std::error::Error for VramAllocError {}
 
 /// Hands out texture pages and CLUT slots.
 #[derive(Clone, Debug)]
@@ -73,12 +88,10 @@ impl VramAllocator {
 
     /// Place a texture: its own page slot (one to four 64-halfword columns, one page row),
     /// and a CLUT slot when it has a CLUT.
-    pub fn place(&mut self, name: &str, texture: &Texture) -> Result<Placement, VramFull> {
+    pub fn place(&mut self, name: &str, texture: &Texture) -> Result<Placement, VramAllocError> {
         let columns = texture.row_halfwords().div_ceil(64).max(1) as u16;
         let per_row = 16 - self.first_column;
-        let full = || VramFull {
-            what: format!("texture `{name}`"),
-        };
+        let full = || VramAllocError::Texture { name: name.into() };
         if columns > per_row {
             return Err(full());
         }
@@ -104,9 +117,7 @@ impl VramAllocator {
                 self.clut_y += 1;
             }
             if self.clut_y >= self.clut_bottom || len > self.clut_right {
-                return Err(VramFull {
-                    what: format!("the CLUT of texture `{name}`"),
-                });
+                return Err(VramAllocError::Clut { name: name.into() });
             }
             let at = (self.clut_x, self.clut_y);
             self.clut_x += len;
@@ -123,7 +134,7 @@ impl VramAllocator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::quantize::Depth;
+    use crate::scene::texture::Depth;
 
     fn tex(depth: Depth, width: u16) -> Texture {
         Texture {
@@ -161,8 +172,8 @@ mod tests {
             a.place("s", &tex(Depth::Clut4, 8)).unwrap();
         }
         assert_eq!(
-            a.place("x", &tex(Depth::Clut4, 8)).unwrap_err().what,
-            "texture `x`"
+            a.place("x", &tex(Depth::Clut4, 8)).unwrap_err(),
+            VramAllocError::Texture { name: "x".into() }
         );
     }
 }

@@ -2,7 +2,7 @@
 //! GTE's signed 16-bit vertex range.
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// One mesh vertex: position in mesh units, unit normal, texture coordinate in 0..1.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -33,22 +33,108 @@ pub struct Mesh {
     pub faces: Vec<MeshFace>,
 }
 
-/// Why a mesh could not be loaded.
+/// Why a mesh could not be loaded or placed.
 #[derive(Debug)]
-pub struct MeshError {
-    /// The file or built-in name.
-    pub source: String,
-    /// What went wrong.
-    pub message: String,
+pub enum MeshError {
+    /// The OBJ reader refused the file; `line` is the offending line when it can be found.
+    Obj {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line of the error, when located.
+        line: Option<usize>,
+        /// The reader's error.
+        source: tobj::LoadError,
+    },
+    /// A vertex position is not a finite number.
+    NotFinite {
+        /// The file.
+        file: PathBuf,
+        /// 1-based vertex number.
+        vertex: usize,
+    },
+    /// A face's indices run past the index list.
+    IndicesPastEnd {
+        /// The file.
+        file: PathBuf,
+    },
+    /// A face refers to a vertex that does not exist.
+    MissingVertex {
+        /// The file.
+        file: PathBuf,
+    },
+    /// The file has no faces.
+    NoFaces {
+        /// The file.
+        file: PathBuf,
+    },
+    /// A scale that is not a positive number.
+    BadScale {
+        /// Who asked for the scale (object and mesh).
+        name: String,
+        /// The scale.
+        scale: f64,
+    },
+    /// The scaled coordinates exceed the GTE's signed 16-bit vertices.
+    TooLarge {
+        /// Who asked for the scale (object and mesh).
+        name: String,
+        /// Largest absolute coordinate of the mesh.
+        extent: f64,
+        /// The scale.
+        scale: f64,
+    },
 }
 
 impl fmt::Display for MeshError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.source, self.message)
+        match self {
+            MeshError::Obj {
+                file,
+                line: Some(n),
+                source,
+            } => write!(f, "{}: line {n}: {source}", file.display()),
+            MeshError::Obj {
+                file,
+                line: None,
+                source,
+            } => write!(f, "{}: {source}", file.display()),
+            MeshError::NotFinite { file, vertex } => {
+                write!(f, "{}: vertex {vertex} is not finite", file.display())
+            }
+            MeshError::IndicesPastEnd { file } => write!(
+                f,
+                "{}: face indices run past the index list",
+                file.display()
+            ),
+            MeshError::MissingVertex { file } => {
+                write!(f, "{}: face refers to a missing vertex", file.display())
+            }
+            MeshError::NoFaces { file } => write!(f, "{}: no faces", file.display()),
+            MeshError::BadScale { name, scale } => {
+                write!(f, "{name}: scale must be a positive number, got {scale}")
+            }
+            MeshError::TooLarge {
+                name,
+                extent,
+                scale,
+            } => write!(
+                f,
+                "{name}: coordinates up to {extent} times scale {scale} exceed the GTE's 16-bit \
+                 range (32767); use scale <= {:.6}",
+                MAX_COORDINATE / extent
+            ),
+        }
     }
 }
 
-impl std::error::Error for MeshError {}
+impl std::error::Error for MeshError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            MeshError::Obj { source, .. } => Some(source),
+            _ => None,
+        }
+    }
+}
 
 /// Largest coordinate a scaled vertex may have: the GTE takes signed 16-bit vertices.
 pub const MAX_COORDINATE: f64 = 32767.0;
@@ -153,19 +239,16 @@ impl Mesh {
     pub fn check_scale(&self, name: &str, scale: f64) -> Result<(), MeshError> {
         let extent = self.extent();
         if !scale.is_finite() || scale <= 0.0 {
-            return Err(MeshError {
-                source: name.into(),
-                message: format!("scale must be a positive number, got {scale}"),
+            return Err(MeshError::BadScale {
+                name: name.into(),
+                scale,
             });
         }
         if extent * scale > MAX_COORDINATE {
-            return Err(MeshError {
-                source: name.into(),
-                message: format!(
-                    "coordinates up to {extent} times scale {scale} exceed the GTE's 16-bit \
-                     range (32767); use scale <= {:.6}",
-                    MAX_COORDINATE / extent
-                ),
+            return Err(MeshError::TooLarge {
+                name: name.into(),
+                extent,
+                scale,
             });
         }
         Ok(())
@@ -175,10 +258,7 @@ impl Mesh {
     /// polygons are fanned into triangles). Missing normals are computed per face; missing
     /// texture coordinates are 0.
     pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
-        let err = |message: String| MeshError {
-            source: path.display().to_string(),
-            message,
-        };
+        let file = || path.to_path_buf();
         let options = tobj::LoadOptions {
             single_index: true,
             triangulate: false,
@@ -189,9 +269,10 @@ impl Mesh {
             let line = std::fs::read_to_string(path)
                 .ok()
                 .and_then(|text| locate_obj_error(&text, e));
-            match line {
-                Some(n) => err(format!("line {n}: {e}")),
-                None => err(e.to_string()),
+            MeshError::Obj {
+                file: file(),
+                line,
+                source: e,
             }
         })?;
         let mut mesh = Mesh::default();
@@ -208,7 +289,10 @@ impl Mesh {
                     -(m.positions[3 * i + 2] as f64),
                 ];
                 if p.iter().any(|c| !c.is_finite()) {
-                    return Err(err(format!("vertex {} is not finite", i + 1)));
+                    return Err(MeshError::NotFinite {
+                        file: file(),
+                        vertex: i + 1,
+                    });
                 }
                 let normal = if m.normals.len() >= 3 * (i + 1) {
                     normalize([
@@ -243,11 +327,11 @@ impl Mesh {
             for n in arities {
                 let n = n as usize;
                 let Some(idx) = m.indices.get(at..at + n) else {
-                    return Err(err("face indices run past the index list".into()));
+                    return Err(MeshError::IndicesPastEnd { file: file() });
                 };
                 at += n;
                 if idx.iter().any(|&i| i as usize >= count) {
-                    return Err(err("face refers to a missing vertex".into()));
+                    return Err(MeshError::MissingVertex { file: file() });
                 }
                 // OBJ front faces run counter-clockwise as seen; on the PS1 screen (Y down)
                 // a front face's first three vertices run clockwise as seen (NCLIP > 0), and a
@@ -275,7 +359,7 @@ impl Mesh {
             }
         }
         if mesh.faces.is_empty() {
-            return Err(err("no faces".into()));
+            return Err(MeshError::NoFaces { file: file() });
         }
         mesh.fill_missing_normals();
         Ok(mesh)

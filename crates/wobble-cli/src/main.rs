@@ -6,6 +6,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand, PageDepth};
 
+mod render;
+
 #[derive(Parser)]
 #[command(
     name = "wobble",
@@ -21,7 +23,7 @@ struct Cli {
 enum Command {
     /// Render a scene (the built-in default scene without an argument) through GTE ->
     /// ordering table -> GPU.
-    Render(wobble::render::RenderArgs),
+    Render(render::RenderArgs),
     /// GTE tools.
     Gte {
         #[command(subcommand)]
@@ -74,6 +76,24 @@ enum Region {
     Display,
 }
 
+/// 5-bit to 8-bit conversion, as `--expand` takes it.
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum ExpandArg {
+    /// `c << 3 | c >> 2`: 31 maps to 255.
+    Replicate,
+    /// `c << 3`: what console capture tools wrote (31 maps to 248).
+    Shift,
+}
+
+impl From<ExpandArg> for Expand {
+    fn from(e: ExpandArg) -> Expand {
+        match e {
+            ExpandArg::Replicate => Expand::Replicate,
+            ExpandArg::Shift => Expand::Shift,
+        }
+    }
+}
+
 #[derive(clap::Args)]
 struct ReplayArgs {
     /// Command stream (.gpu text, docs/formats.md).
@@ -88,8 +108,8 @@ struct ReplayArgs {
     #[arg(long, value_enum, default_value_t = Region::Vram)]
     region: Region,
     /// 5-bit to 8-bit conversion.
-    #[arg(long, value_enum, default_value_t = Expand::Replicate)]
-    expand: Expand,
+    #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
+    expand: ExpandArg,
 }
 
 #[derive(clap::Args)]
@@ -115,8 +135,8 @@ struct DumpArgs {
     #[arg(long, default_value = "0,0")]
     clut: String,
     /// 5-bit to 8-bit conversion.
-    #[arg(long, value_enum, default_value_t = Expand::Replicate)]
-    expand: Expand,
+    #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
+    expand: ExpandArg,
 }
 
 type Result<T> = std::result::Result<T, String>;
@@ -166,7 +186,7 @@ fn parse_display(text: &str) -> Result<DisplayArea> {
 
 fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
     let text = read_text(file)?;
-    let outcome = wobble::gte_replay::replay(&text, emit);
+    let outcome = wobble::gte_vectors::replay(&text, emit);
     for e in &outcome.errors {
         eprintln!("{}: {e}", file.display());
     }
@@ -193,9 +213,10 @@ fn replay(args: &ReplayArgs) -> Result<()> {
         let stem = args.stream.file_stem().unwrap_or_default();
         PathBuf::from(stem).with_extension("png")
     });
+    let expand = Expand::from(args.expand);
     let img = match args.region {
-        Region::Vram => vram_image::vram_image(vram, args.expand),
-        Region::Display => vram_image::display_image(vram, gpu.display_area(), args.expand),
+        Region::Vram => vram_image::vram_image(vram, expand),
+        Region::Display => vram_image::display_image(vram, gpu.display_area(), expand),
     };
     vram_image::save_png(&img, &output).map_err(|e| e.to_string())?;
     eprintln!("wrote {}", output.display());
@@ -211,6 +232,7 @@ fn dump(args: &DumpArgs) -> Result<()> {
     let bytes = std::fs::read(&args.raw).map_err(|e| format!("{}: {e}", args.raw.display()))?;
     let vram =
         vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", args.raw.display()))?;
+    let expand = Expand::from(args.expand);
     if let Some(page) = &args.texpage {
         let (px, py) = parse_pair(page, "--texpage")?;
         let depth = match args.depth {
@@ -220,13 +242,13 @@ fn dump(args: &DumpArgs) -> Result<()> {
             d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
         };
         let clut = parse_pair(&args.clut, "--clut")?;
-        let img = vram_image::texture_page_image(&vram, px, py, depth, clut, args.expand);
+        let img = vram_image::texture_page_image(&vram, px, py, depth, clut, expand);
         vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
     } else {
         let img = match args.region {
-            Region::Vram => vram_image::vram_image(&vram, args.expand),
+            Region::Vram => vram_image::vram_image(&vram, expand),
             Region::Display => {
-                vram_image::display_image(&vram, parse_display(&args.display)?, args.expand)
+                vram_image::display_image(&vram, parse_display(&args.display)?, expand)
             }
         };
         vram_image::save_png(&img, &args.output).map_err(|e| e.to_string())?;
@@ -254,7 +276,10 @@ fn trade(args: &TradeArgs) -> Result<()> {
         repeats: args.repeats,
         sweep_step: args.sweep_step as usize,
     };
-    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out)?;
+    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out, &mut |step| {
+        eprintln!("{step}")
+    })
+    .map_err(|e| e.to_string())?;
     for r in &rows {
         println!(
             "{:<50} {:>8.3} ms {:>6.2}x  texel error mean {:.3} max {:.2}  jitter {:.3} px",
@@ -268,7 +293,7 @@ fn trade(args: &TradeArgs) -> Result<()> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Render(args) => wobble::render::run(args).map(|summary| {
+        Command::Render(args) => render::run(args).map(|summary| {
             println!("{summary}");
             true
         }),

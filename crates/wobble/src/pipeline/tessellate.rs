@@ -4,7 +4,7 @@
 //! space, with normals and texture coordinates interpolated linearly; the new vertices go
 //! through the GTE like any other. All arithmetic is integer, as on the console.
 //!
-//! The renderer decides per polygon and per frame whether to split (`pipeline.rs`): up to
+//! The renderer decides per polygon and per frame whether to split (`pipeline/gte_stage.rs`): up to
 //! the object's level, a polygon is split while its projected size (object size / depth) is
 //! large or while a vertex lies behind the near plane.
 

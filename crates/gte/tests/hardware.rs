@@ -1,25 +1,26 @@
-//! Replays the 1,150 GTE vectors recorded on a real PlayStation (fixtures/gte) and compares
-//! all 64 registers, FLAG included, as the fixture's README prescribes.
+//! Replays the 1,150 GTE vectors recorded on a real PlayStation (fixtures/gte, ps1-tests, MIT)
+//! and compares all 64 registers, FLAG included, as the fixture's README prescribes.
 
 use gte::{Gte, REGISTER_NAMES};
 use serde_json::Value;
+
+const FIXTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../fixtures/gte/ps1-tests-hw.jsonl"
+);
 
 fn words(v: &Value, field: &str) -> Vec<u32> {
     v[field]
         .as_array()
         .unwrap_or_else(|| panic!("field {field} missing"))
         .iter()
-        .map(|w| w.as_u64().expect("register value") as u32)
+        .map(|w| u32::try_from(w.as_u64().expect("register value")).expect("32-bit value"))
         .collect()
 }
 
 #[test]
 fn all_hardware_vectors_match() {
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/fixtures/gte/ps1-tests-hw.jsonl"
-    ))
-    .expect("fixture readable");
+    let text = std::fs::read_to_string(FIXTURE).expect("fixture readable");
     let mut passed = 0;
     let mut failures = Vec::new();
     for line in text.lines().filter(|l| !l.trim().is_empty()) {
@@ -28,21 +29,19 @@ fn all_hardware_vectors_match() {
         let input: Vec<u32> = [words(&v, "in_data"), words(&v, "in_ctrl")].concat();
         let expected: Vec<u32> = [words(&v, "out_data"), words(&v, "out_ctrl")].concat();
         assert_eq!(input.len(), 64);
+        assert_eq!(expected.len(), 64);
         let mut gte = Gte::new();
-        for (reg, &value) in input.iter().enumerate() {
+        for (reg, &value) in (0..).zip(&input) {
             gte.write(reg, value);
         }
         if let Some(cmd) = v["cmd"].as_u64() {
-            gte.execute(cmd as u32);
+            gte.execute(u32::try_from(cmd).expect("32-bit command"));
         }
         let mut diffs = Vec::new();
-        for (reg, &want) in expected.iter().enumerate() {
+        for ((reg, &want), name) in (0..).zip(&expected).zip(REGISTER_NAMES) {
             let got = gte.read(reg);
             if got != want {
-                diffs.push(format!(
-                    "{} got {got:08X} expected {want:08X}",
-                    REGISTER_NAMES[reg]
-                ));
+                diffs.push(format!("{name} got {got:08X} expected {want:08X}"));
             }
         }
         if diffs.is_empty() {

@@ -2,14 +2,15 @@
 //! costs in wrong pixels, texel error and vertex jitter, measured on one scene against the
 //! f64 reference renderer (docs/trade.md).
 
-use crate::pipeline::{PipelineOptions, Renderer, object_transform, prepare};
-use crate::quantize::{Depth, Texture};
+use crate::pipeline::{PipelineOptions, RenderError, Renderer, object_transform, prepare};
 use crate::reference::{self, ReferenceFrame, rotation};
 use crate::scene::Scene;
+use crate::scene::texture::{Depth, Texture};
 use gte::DivideMode;
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
+use std::fmt;
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// One configuration of the knobs.
@@ -320,11 +321,95 @@ fn median(mut v: Vec<f64>) -> f64 {
     v.get(v.len() / 2).copied().unwrap_or(0.0)
 }
 
+/// A long step [`write_report`] is starting; its `Display` is the line to show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TradeProgress {
+    /// Measuring every configuration.
+    Measuring {
+        /// Configurations measured.
+        configurations: usize,
+        /// Frames per configuration.
+        frames: u32,
+        /// Timing runs per configuration.
+        repeats: u32,
+    },
+    /// The divide sweep over all 2^32 (H, SZ3) pairs.
+    FullSweep,
+}
+
+impl fmt::Display for TradeProgress {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TradeProgress::Measuring {
+                configurations,
+                frames,
+                repeats,
+            } => write!(
+                f,
+                "measuring {configurations} configurations over {frames} frames, {repeats} \
+                 timing runs each"
+            ),
+            TradeProgress::FullSweep => write!(
+                f,
+                "sweeping the GTE divide over all 2^32 (H, SZ3) pairs in three modes (about a \
+                 minute)"
+            ),
+        }
+    }
+}
+
+/// Why the trade report could not be written.
+#[derive(Debug)]
+pub enum TradeError {
+    /// A renderer could not be built for the scene.
+    Render(RenderError),
+    /// Creating a directory or writing the report failed.
+    Io {
+        /// The directory or file.
+        file: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Writing an image failed.
+    Image {
+        /// The image file.
+        file: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
+}
+
+impl fmt::Display for TradeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TradeError::Render(e) => write!(f, "{e}"),
+            TradeError::Io { file, source } => write!(f, "{}: {source}", file.display()),
+            TradeError::Image { file, source } => write!(f, "{}: {source}", file.display()),
+        }
+    }
+}
+
+impl std::error::Error for TradeError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            TradeError::Render(e) => Some(e),
+            TradeError::Io { source, .. } => Some(source),
+            TradeError::Image { source, .. } => Some(source),
+        }
+    }
+}
+
+impl From<RenderError> for TradeError {
+    fn from(e: RenderError) -> Self {
+        TradeError::Render(e)
+    }
+}
+
 /// Measure every configuration on `scene`.
 pub fn measure(
     scene: &Scene,
     settings: TradeSettings,
-) -> Result<(Vec<Row>, Vec<image::RgbImage>), String> {
+) -> Result<(Vec<Row>, Vec<image::RgbImage>), RenderError> {
     let frames = settings.frames.max(2);
     let refs: Vec<ReferenceFrame> = (0..frames).map(|f| reference::render(scene, f)).collect();
     let coords = coordinate_scene(scene);
@@ -342,8 +427,7 @@ pub fn measure(
     let mut baseline: Vec<Vec<u16>> = Vec::new();
     let mut baseline_ms = 0.0;
     for (k, config) in configs().into_iter().enumerate() {
-        let mut renderer =
-            Renderer::new(scene.clone(), config.options).map_err(|e| e.to_string())?;
+        let mut renderer = Renderer::new(scene.clone(), config.options)?;
         let mut times = Vec::new();
         let mut drawn = 0usize;
         let mut images = Vec::new();
@@ -379,8 +463,7 @@ pub fn measure(
                 dither: Some(false),
                 ..config.options
             },
-        )
-        .map_err(|e| e.to_string())?;
+        )?;
         let mut errors = Vec::new();
         for (f, reference) in refs.iter().enumerate() {
             coord_renderer.render_frame(f as u32);
@@ -585,23 +668,25 @@ pub fn write_report(
     scene_name: &str,
     settings: TradeSettings,
     out: &Path,
-) -> Result<Vec<Row>, String> {
+    progress: &mut dyn FnMut(TradeProgress),
+) -> Result<Vec<Row>, TradeError> {
     let images_dir = out.join("trade");
-    std::fs::create_dir_all(&images_dir).map_err(|e| format!("{}: {e}", images_dir.display()))?;
-    eprintln!(
-        "measuring {} configurations over {} frames, {} timing runs each",
-        configs().len(),
-        settings.frames.max(2),
-        settings.repeats.max(1)
-    );
+    std::fs::create_dir_all(&images_dir).map_err(|source| TradeError::Io {
+        file: images_dir.clone(),
+        source,
+    })?;
+    progress(TradeProgress::Measuring {
+        configurations: configs().len(),
+        frames: settings.frames.max(2),
+        repeats: settings.repeats.max(1),
+    });
     let (rows, heat) = measure(scene, settings)?;
-    let save = |img: &image::RgbImage, name: &str| -> Result<(), String> {
+    let save = |img: &image::RgbImage, name: &str| -> Result<(), TradeError> {
         let p = images_dir.join(name);
         img.save_with_format(&p, image::ImageFormat::Png)
-            .map_err(|e| format!("{}: {e}", p.display()))
+            .map_err(|source| TradeError::Image { file: p, source })
     };
-    let mut hw =
-        Renderer::new(scene.clone(), PipelineOptions::default()).map_err(|e| e.to_string())?;
+    let mut hw = Renderer::new(scene.clone(), PipelineOptions::default())?;
     hw.render_frame(0);
     let reference = reference::render(scene, 0);
     save(
@@ -618,9 +703,7 @@ pub fn write_report(
         .collect();
     save(&curve_image(&curve), "tessellation-curve.png")?;
     if settings.sweep_step <= 1 {
-        eprintln!(
-            "sweeping the GTE divide over all 2^32 (H, SZ3) pairs in three modes (about a minute)"
-        );
+        progress(TradeProgress::FullSweep);
     }
     let stability = divide_stability(settings.sweep_step);
 
@@ -737,7 +820,7 @@ pub fn write_report(
     let _ = writeln!(md, "\n## Conclusion\n");
     let _ = writeln!(md, "{}", conclusion(base, &rows, &tess));
     let path = out.join("trade.md");
-    std::fs::write(&path, md).map_err(|e| format!("{}: {e}", path.display()))?;
+    std::fs::write(&path, md).map_err(|source| TradeError::Io { file: path, source })?;
     Ok(rows)
 }
 

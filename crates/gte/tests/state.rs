@@ -1,0 +1,202 @@
+//! Save states: `Gte::state` / `Gte::load_state` restore the engine exactly, without the side
+//! effects of register writes (gte.md §2), and (with `serde`) survive serialization.
+
+use gte::{DivideMode, Flag, Gte, GteState, Registers, StateError};
+use proptest::prelude::*;
+
+fn supported_modes() -> Vec<DivideMode> {
+    [DivideMode::Unr, DivideMode::Exact, DivideMode::F32]
+        .into_iter()
+        .filter(|m| m.is_supported())
+        .collect()
+}
+
+/// Any register file: every field an arbitrary bit pattern (FLAG as a CTC2 write keeps it).
+fn registers() -> impl Strategy<Value = Registers> {
+    prop::collection::vec(any::<u32>(), 96).prop_map(|w| {
+        let mut it = w.into_iter();
+        let mut next = move || it.next().unwrap_or(0);
+        let m3 = |f: &mut dyn FnMut() -> u32| -> [[i16; 3]; 3] {
+            std::array::from_fn(|_| std::array::from_fn(|_| f() as i16))
+        };
+        Registers {
+            v: m3(&mut next),
+            rgbc: next(),
+            otz: next() as u16,
+            ir: std::array::from_fn(|_| next() as i16),
+            sxy: std::array::from_fn(|_| next()),
+            sz: std::array::from_fn(|_| next() as u16),
+            rgb: std::array::from_fn(|_| next()),
+            res1: next(),
+            mac: std::array::from_fn(|_| next() as i32),
+            lzcs: next(),
+            lzcr: next(),
+            rt: m3(&mut next),
+            tr: std::array::from_fn(|_| next() as i32),
+            llm: m3(&mut next),
+            bk: std::array::from_fn(|_| next() as i32),
+            lcm: m3(&mut next),
+            fc: std::array::from_fn(|_| next() as i32),
+            ofx: next() as i32,
+            ofy: next() as i32,
+            h: next() as u16,
+            dqa: next() as i16,
+            dqb: next() as i32,
+            zsf3: next() as i16,
+            zsf4: next() as i16,
+            flag: Flag::from_bits(next()),
+        }
+    })
+}
+
+fn state() -> impl Strategy<Value = GteState> {
+    (registers(), prop::sample::select(supported_modes())).prop_map(|(registers, divide_mode)| {
+        GteState {
+            version: GteState::VERSION,
+            registers,
+            divide_mode,
+        }
+    })
+}
+
+/// A command word: mostly defined opcodes, with random field bits.
+fn command() -> impl Strategy<Value = u32> {
+    (
+        prop::sample::select(gte::Opcode::ALL.to_vec()),
+        any::<u32>(),
+    )
+        .prop_map(|(op, bits)| (bits & 0x01FF_FFC0) | op.bits())
+}
+
+fn all_registers(gte: &Gte) -> Vec<u32> {
+    (0..64).map(|r| gte.read(r)).collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(500))]
+
+    /// A raw state loads exactly: the fields are the ones saved (no IRGB, SXYP, LZCS or FLAG
+    /// write rule applied), all 64 register reads agree, and commands then agree.
+    #[test]
+    fn load_restores_exactly(s in state(), cmds in prop::collection::vec(command(), 0..8)) {
+        let mut original = Gte::new();
+        original.load_state(&s).unwrap();
+        prop_assert_eq!(&original.state(), &s);
+        let mut restored = Gte::new();
+        restored.load_state(&original.state()).unwrap();
+        prop_assert_eq!(all_registers(&restored), all_registers(&original));
+        for &c in &cmds {
+            prop_assert_eq!(original.execute(c), restored.execute(c));
+            prop_assert_eq!(all_registers(&restored), all_registers(&original));
+        }
+        prop_assert_eq!(original.state(), restored.state());
+    }
+
+    /// Saving through the 64 register reads and writing them back is not a restore (IRGB
+    /// rewrites IR1-3, SXYP pushes the FIFO, LZCS recomputes LZCR); `load_state` is.
+    #[test]
+    fn register_round_trip_differs_where_state_does_not(s in state()) {
+        let mut original = Gte::new();
+        original.load_state(&s).unwrap();
+        let mut via_registers = Gte::new();
+        for r in 0..64 {
+            via_registers.write(r, original.read(r));
+        }
+        let r = &s.registers;
+        let irgb_exact = (1..4).all(|n| r.ir[n] as u16 & !0xF80 == 0);
+        let lzcr_exact = r.lzcr == if r.lzcs >> 31 == 1 { r.lzcs.leading_ones() } else { r.lzcs.leading_zeros() };
+        let sxy_exact = r.sxy[0] == r.sxy[1] && r.sxy[1] == r.sxy[2];
+        prop_assert_eq!(via_registers.registers() == original.registers(), irgb_exact && lzcr_exact && sxy_exact);
+    }
+
+    /// Random commands, a JSON save at a random point, restore into a fresh engine: both
+    /// continue with identical registers and FLAG.
+    #[cfg(feature = "serde")]
+    #[test]
+    fn serde_save_restore_mid_sequence(
+        s in state(),
+        cmds in prop::collection::vec(command(), 1..12),
+        at in any::<prop::sample::Index>(),
+    ) {
+        let mut gte = Gte::new();
+        gte.load_state(&s).unwrap();
+        let split = at.index(cmds.len() + 1);
+        for &c in &cmds[..split] {
+            gte.execute(c);
+        }
+        let json = serde_json::to_string(&gte.state()).unwrap();
+        let mut restored = Gte::new();
+        restored.load_state(&serde_json::from_str(&json).unwrap()).unwrap();
+        for &c in &cmds[split..] {
+            prop_assert_eq!(gte.execute(c), restored.execute(c));
+            prop_assert_eq!(all_registers(&restored), all_registers(&gte));
+            prop_assert_eq!(restored.flag(), gte.flag());
+        }
+        prop_assert_eq!(restored.state(), gte.state());
+        // Every truncation is an error, never a panic.
+        for cut in (0..json.len()).step_by(7) {
+            prop_assert!(serde_json::from_str::<GteState>(&json[..cut]).is_err());
+        }
+    }
+}
+
+#[test]
+fn other_version_is_refused() {
+    let mut gte = Gte::new();
+    gte.write_control(26, 320);
+    let mut s = gte.state();
+    s.version = GteState::VERSION + 1;
+    let mut fresh = Gte::new();
+    assert_eq!(
+        fresh.load_state(&s),
+        Err(StateError::Version {
+            found: GteState::VERSION + 1,
+            expected: GteState::VERSION
+        })
+    );
+    assert_eq!(fresh, Gte::new(), "a refused state changes nothing");
+}
+
+#[cfg(not(feature = "divide-modes"))]
+#[test]
+fn unsupported_divide_mode_is_refused() {
+    let mut s = Gte::new().state();
+    s.divide_mode = DivideMode::Exact;
+    assert_eq!(
+        Gte::new().load_state(&s),
+        Err(StateError::DivideMode(gte::UnsupportedDivideMode(
+            DivideMode::Exact
+        )))
+    );
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn serialized_versions_and_size() {
+    let mut gte = Gte::new();
+    for r in 0..64 {
+        gte.write(r, 0x8765_4321u32.rotate_left(r));
+    }
+    let json = serde_json::to_string(&gte.state()).unwrap();
+    // The version is written first, and checked as soon as it is read.
+    assert!(json.starts_with(&format!("{{\"version\":{}", GteState::VERSION)));
+    let other = json.replacen(
+        &format!("\"version\":{}", GteState::VERSION),
+        "\"version\":7",
+        1,
+    );
+    let err = serde_json::from_str::<GteState>(&other)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("version 7") && err.contains(&format!("reads version {}", GteState::VERSION)),
+        "{err}"
+    );
+    let garbage = r#"{"version":7,"registers":[1,2,3]}"#;
+    let err = serde_json::from_str::<GteState>(garbage)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("version 7"), "{err}");
+    eprintln!("serialized GTE state: {} bytes of JSON", json.len());
+    assert!(json.len() < 2048);
+}

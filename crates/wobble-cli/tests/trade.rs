@@ -1,0 +1,34 @@
+//! `wobble trade`: the command writes the report on a small scene.
+
+use std::path::PathBuf;
+
+/// `wobble trade` runs on a small scene and writes the table, images and plot.
+#[test]
+fn trade_command_writes_report() {
+    let out = std::env::temp_dir().join(format!("wobble-trade-{}", std::process::id()));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args([
+            "trade",
+            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("../../fixtures/scenes/face-on.toml")
+                .to_str()
+                .unwrap(),
+            "--frames",
+            "2",
+            "--repeats",
+            "1",
+            "--sweep-step",
+            "4099",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("trade.md")).unwrap();
+    assert!(md.contains("| hardware (UNR, snapped, affine, dither, tess 0) |"));
+    assert!(md.contains("| tessellation 4 |"));
+    for f in ["hardware-vs-reference.png", "tessellation-curve.png"] {
+        assert!(out.join("trade").join(f).exists(), "{f}");
+    }
+}

@@ -1,0 +1,86 @@
+//! Whole-polygon clipping after projection: a polygon is dropped whole (a vertex behind or too
+//! near the camera, a saturated screen position, a size the GPU would refuse), culled as a
+//! back face, off screen, or drawn; no polygon is cut at the screen edge (the GPU clips
+//! pixels to the drawing area).
+
+use gte::Flag;
+use gte::typed::I4F12;
+
+/// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
+/// clamped to 0), divide overflow (SZ3 <= H/2, too near), SX2/SY2 saturated (gte.md §3,
+/// §5 steps 4 and 6, §6).
+const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
+    .union(Flag::SX2_SATURATED)
+    .union(Flag::SY2_SATURATED)
+    .union(Flag::SZ3_OTZ_SATURATED);
+
+/// What the GTE stage decides for one polygon.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Verdict {
+    /// Discarded whole: a vertex behind or too near the camera (SZ3 saturated, divide
+    /// overflow), a saturated SX/SY, or a size the GPU would drop (gpu.md §3).
+    Drop,
+    /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (gte.md §7).
+    Cull,
+    /// Entirely outside the screen.
+    Offscreen,
+    /// To be drawn: screen positions, screen Z and the larger side of its bounding box.
+    Draw {
+        xy: [(i16, i16); 4],
+        sz: [u16; 4],
+        ir0: I4F12,
+        extent: i32,
+    },
+}
+
+/// Screen bounding box (min x, max x, min y, max y) of some vertices.
+fn bounds(points: &[(i16, i16)]) -> (i32, i32, i32, i32) {
+    points.iter().fold(
+        (i32::MAX, i32::MIN, i32::MAX, i32::MIN),
+        |(x0, x1, y0, y1), &(x, y)| {
+            let (x, y) = (i32::from(x), i32::from(y));
+            (x0.min(x), x1.max(x), y0.min(y), y1.max(y))
+        },
+    )
+}
+
+/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (gpu.md §3).
+fn gpu_drops(triangle: &[(i16, i16)]) -> bool {
+    let (x0, x1, y0, y1) = bounds(triangle);
+    x1 - x0 >= 1024 || y1 - y0 >= 512
+}
+
+/// The verdict for a projected polygon: FLAG of its RTPT/RTPS, the NCLIP area of its
+/// first three vertices, screen positions (the fourth unused for a triangle), screen Z and
+/// the IR0 the last projection left, on a `w` x `h` screen.
+pub(super) fn classify(
+    flag: Flag,
+    area: i32,
+    xy: [(i16, i16); 4],
+    sz: [u16; 4],
+    ir0: I4F12,
+    quad: bool,
+    (w, h): (i32, i32),
+) -> Verdict {
+    if flag.intersects(DROP_FLAGS) {
+        return Verdict::Drop;
+    }
+    if area <= 0 {
+        return Verdict::Cull;
+    }
+    let corners = if quad { &xy[..] } else { &xy[..3] };
+    let (x0, x1, y0, y1) = bounds(corners);
+    if x1 < 0 || x0 >= w || y1 < 0 || y0 >= h {
+        return Verdict::Offscreen;
+    }
+    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (gpu.md §3).
+    if gpu_drops(&xy[..3]) || (quad && gpu_drops(&xy[1..])) {
+        return Verdict::Drop;
+    }
+    Verdict::Draw {
+        xy,
+        sz,
+        ir0,
+        extent: (x1 - x0).max(y1 - y0),
+    }
+}

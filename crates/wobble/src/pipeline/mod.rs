@@ -1,0 +1,313 @@
+//! The PS1 rendering pipeline, using only the console's mechanisms: GTE transforms (RTPT/RTPS,
+//! integer-snapped screen positions), NCLIP back-face culling, whole-polygon clipping,
+//! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
+//! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
+//!
+//! One frame runs the stages in order: `gte_stage` (transform, cull, clip, light, depth;
+//! splitting polygons as `tessellate` and `clip` decide), `ot_stage` (GP0 packets linked into
+//! the ordering table), `gpu_stage` (the OT walk into the GPU, or the precise path).
+
+mod clip;
+mod gpu_stage;
+mod gte_stage;
+pub mod object;
+mod ot_stage;
+pub mod tessellate;
+
+pub use object::{angle, object_rotation, object_transform, prepare};
+
+use crate::scene::texture::Depth;
+use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
+use crate::scene::{InvalidScene, Scene};
+use gpu::ordering_table::OrderingTable;
+use gpu::rasterizer::precise::PreciseVertex;
+use gpu::texture::ClutCache;
+use gpu::{DisplayArea, Gpu};
+use gpu_stage::upload;
+use gte::DivideMode;
+use gte::typed::Geometry;
+use gte_stage::ProjectedFace;
+use object::PreparedObject;
+use std::fmt;
+use std::time::{Duration, Instant};
+use tessellate::{MAX_LEVEL, SplitStack};
+
+/// Ordering-table entries.
+pub const OT_DEPTH: usize = 2048;
+/// OTZ to OT index: OTZ (the mean SZ) >> this.
+pub const OT_SHIFT: u32 = 3;
+
+/// Most polygons one frame can draw: sizes the scratch list and the primitive buffer (13
+/// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
+pub const MAX_POLYGONS: usize = 1 << 17;
+
+/// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
+/// are split while their object's tessellation level allows.
+pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
+
+/// Knobs, all defaulting to what the scene says and to hardware behaviour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PipelineOptions {
+    /// Override every object's tessellation level (0..=4).
+    pub tessellation: Option<u8>,
+    /// A polygon whose screen bounding box is wider or taller than this many pixels is split
+    /// (up to its object's tessellation level); 0 splits every polygon to the full level.
+    pub split_extent: u16,
+    /// Override the scene's dithering.
+    pub dither: Option<bool>,
+    /// GTE divide (hardware UNR by default).
+    pub divide_mode: DivideMode,
+    /// Non-hardware: keep 4 fractional bits of each screen position (the GTE's 16.16 result
+    /// before its truncation to whole pixels) and rasterize with the precise path.
+    pub subpixel: bool,
+    /// Non-hardware: perspective-correct texture coordinates (the precise path with 1/SZ
+    /// per vertex) instead of the GPU's affine stepping.
+    pub perspective_uv: bool,
+}
+
+impl PipelineOptions {
+    /// Whether polygons go through the non-hardware precise rasterizer (never, when built
+    /// without the `accuracy-knobs` feature).
+    pub fn precise(&self) -> bool {
+        cfg!(feature = "accuracy-knobs") && (self.subpixel || self.perspective_uv)
+    }
+}
+
+impl Default for PipelineOptions {
+    fn default() -> Self {
+        Self {
+            tessellation: None,
+            split_extent: DEFAULT_SPLIT_EXTENT,
+            dither: None,
+            divide_mode: DivideMode::default(),
+            subpixel: false,
+            perspective_uv: false,
+        }
+    }
+}
+
+/// Why a renderer could not be built.
+#[derive(Debug)]
+pub enum RenderError {
+    /// Textures do not fit VRAM.
+    Vram(VramAllocError),
+    /// The scene is inconsistent.
+    Scene(InvalidScene),
+}
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::Vram(e) => write!(f, "{e}"),
+            RenderError::Scene(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl std::error::Error for RenderError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            RenderError::Vram(e) => Some(e),
+            RenderError::Scene(e) => Some(e),
+        }
+    }
+}
+
+/// What one frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Polygons examined after splitting: each ends drawn, culled, off screen or dropped.
+    pub polygons: usize,
+    /// Polygons linked into the ordering table and drawn.
+    pub drawn: usize,
+    /// Back faces removed by NCLIP.
+    pub culled: usize,
+    /// Polygons entirely off screen.
+    pub offscreen: usize,
+    /// Polygons dropped whole: a vertex behind the near plane (SZ3 or divide overflow flag),
+    /// a saturated SX/SY, or an extent the GPU would drop.
+    pub dropped: usize,
+    /// Time in GTE work (transform, project, cull, light, AVSZ).
+    pub gte: Duration,
+    /// Time building packets and linking them into the ordering table.
+    pub ot: Duration,
+    /// Time in the GPU (environment, OT walk, rasterization).
+    pub gpu: Duration,
+}
+
+impl FrameStats {
+    /// Add another frame's counts and times.
+    pub fn accumulate(&mut self, other: &FrameStats) {
+        self.polygons += other.polygons;
+        self.drawn += other.drawn;
+        self.culled += other.culled;
+        self.offscreen += other.offscreen;
+        self.dropped += other.dropped;
+        self.gte += other.gte;
+        self.ot += other.ot;
+        self.gpu += other.gpu;
+    }
+}
+
+/// Renders a scene frame by frame into a GPU's VRAM.
+pub struct Renderer {
+    scene: Scene,
+    options: PipelineOptions,
+    objects: Vec<PreparedObject>,
+    gpu: Gpu,
+    ot: OrderingTable,
+    geometry: Geometry,
+    scratch: Vec<ProjectedFace>,
+    stack: SplitStack,
+    capacity: usize,
+    display: DisplayArea,
+    /// CLUT cache of the precise path (the GPU's own is private to it).
+    clut: ClutCache,
+    /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
+    /// filled only when the precise path is on, so the hardware path carries none of it.
+    precise_vertices: Vec<[PreciseVertex; 4]>,
+}
+
+impl Renderer {
+    /// Prepare a scene: tessellate meshes, place and upload textures (GP0 A0h), set up the
+    /// GPU's display.
+    pub fn new(scene: Scene, options: PipelineOptions) -> Result<Renderer, RenderError> {
+        scene.validate().map_err(RenderError::Scene)?;
+        let (width, height) = (scene.screen.width, scene.screen.height);
+        let mut gpu = Gpu::new();
+        gpu.gp1(0x0000_0000);
+        let mut alloc = VramAllocator::new(width, height);
+        let mut placements = Vec::new();
+        for (index, t) in scene.textures.iter().enumerate() {
+            let p = alloc
+                .place(&t.name, &t.texture)
+                .map_err(RenderError::Vram)?;
+            // A textured polygon blends only the texels with bit 15 set (gpu.md §1): a texture
+            // worn by a semi-transparent material gets bit 15 on every texel colour except
+            // transparent 0000h.
+            let blended = scene
+                .objects
+                .iter()
+                .any(|o| o.texture == Some(index) && o.blend.is_some());
+            let mark = |c: u16| if blended && c != 0 { c | 0x8000 } else { c };
+            let (texels, clut) = match t.texture.depth {
+                Depth::Direct15 => {
+                    let texels: Vec<u16> = t.texture.halfwords().into_iter().map(mark).collect();
+                    (texels, Vec::new())
+                }
+                _ => {
+                    let clut: Vec<u16> = t.texture.clut.iter().map(|&c| mark(c)).collect();
+                    (t.texture.halfwords(), clut)
+                }
+            };
+            upload(
+                &mut gpu,
+                p.page_x,
+                p.page_y,
+                t.texture.row_halfwords(),
+                &texels,
+            );
+            if let Some((x, y)) = p.clut {
+                upload(&mut gpu, x, y, clut.len(), &clut);
+            }
+            placements.push(p);
+        }
+        let mut objects = Vec::new();
+        let mut capacity = 0;
+        for (i, o) in scene.objects.iter().enumerate() {
+            let level = options
+                .tessellation
+                .unwrap_or(o.tessellation)
+                .min(MAX_LEVEL);
+            let faces = prepare(&scene, i);
+            capacity = faces
+                .len()
+                .saturating_mul(1 << (2 * level))
+                .saturating_add(capacity)
+                .min(MAX_POLYGONS);
+            let texture = o.texture.and_then(|t| {
+                let depth = scene.textures.get(t)?.texture.depth.bits();
+                Some((*placements.get(t)?, depth))
+            });
+            objects.push(PreparedObject {
+                faces,
+                level,
+                texture,
+            });
+        }
+        // GP1: display mode for the width, 240 lines, display on.
+        let mode = match width {
+            256 => 0,
+            320 => 1,
+            512 => 2,
+            640 => 3,
+            _ => 0x40,
+        };
+        gpu.gp1(0x0800_0000 | mode);
+        gpu.gp1(0x0300_0000);
+        let display = DisplayArea {
+            x: 0,
+            y: 0,
+            width,
+            height,
+            color_24bit: false,
+        };
+        let mut geometry = Geometry::new();
+        geometry.set_divide_mode(options.divide_mode);
+        Ok(Renderer {
+            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
+            scratch: Vec::with_capacity(capacity),
+            stack: SplitStack::default(),
+            capacity,
+            scene,
+            options,
+            objects,
+            gpu,
+            geometry,
+            display,
+            clut: ClutCache::default(),
+            precise_vertices: Vec::new(),
+        })
+    }
+
+    /// The scene being rendered.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The GPU (VRAM holds both buffers and the textures).
+    pub fn gpu(&self) -> &Gpu {
+        &self.gpu
+    }
+
+    /// The display area of the last frame drawn.
+    pub fn display_area(&self) -> DisplayArea {
+        self.display
+    }
+
+    /// The last frame as an RGB image.
+    pub fn image(&self) -> image::RgbImage {
+        crate::vram_image::display_image(
+            self.gpu.vram().as_slice(),
+            self.display,
+            crate::vram_image::Expand::Replicate,
+        )
+    }
+
+    /// Render frame `frame` (objects at their frame-`frame` rotation) into the back buffer
+    /// and display it.
+    pub fn render_frame(&mut self, frame: u32) -> FrameStats {
+        let mut stats = FrameStats::default();
+        let t0 = Instant::now();
+        self.gte_stage(frame, &mut stats);
+        let t1 = Instant::now();
+        self.ot_stage(&mut stats);
+        let t2 = Instant::now();
+        self.gpu_stage(frame);
+        let t3 = Instant::now();
+        stats.gte = t1 - t0;
+        stats.ot = t2 - t1;
+        stats.gpu = t3 - t2;
+        stats
+    }
+}

@@ -1,0 +1,75 @@
+//! The ordering-table stage: each projected polygon becomes a GP0 packet (flat or Gouraud,
+//! textured or not, semi-transparent or not) linked into the ordering table at its depth
+//! (gpu.md §2, §6).
+
+use super::{FrameStats, Renderer};
+
+impl Renderer {
+    pub(super) fn ot_stage(&mut self, stats: &mut FrameStats) {
+        let dither = self.options.dither.unwrap_or(self.scene.screen.dither);
+        self.ot.clear();
+        let mut packet = [0u32; 12];
+        if self.options.precise() {
+            // The precise path links each polygon's index instead of a GP0 packet: the same
+            // depth order, drawn by the non-hardware rasterizer in `gpu_stage`.
+            for (i, f) in self.scratch.iter().enumerate() {
+                if self.ot.insert(f.ot_index as usize, &[i as u32]).is_ok() {
+                    stats.drawn += 1;
+                }
+            }
+            return;
+        }
+        for f in &self.scratch {
+            let n = if f.quad { 4 } else { 3 };
+            // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
+            // packet, which the GPU draws without colour interpolation.
+            let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
+            let mut op = 0x20u32 | if f.quad { 0x08 } else { 0 };
+            if gouraud {
+                op |= 0x10;
+            }
+            if f.texture.is_some() {
+                op |= 0x04;
+            }
+            if f.blend.is_some() {
+                op |= 0x02;
+            }
+            let mut len = 0;
+            for i in 0..n {
+                let [r, g, b] = f.color[i];
+                let rgb = r as u32 | (g as u32) << 8 | (b as u32) << 16;
+                if i == 0 {
+                    packet[len] = op << 24 | rgb;
+                    len += 1;
+                } else if gouraud {
+                    packet[len] = rgb;
+                    len += 1;
+                }
+                let (x, y) = f.xy[i];
+                packet[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
+                len += 1;
+                if let Some((clut, tpage)) = f.texture {
+                    let (u, v) = f.uv[i];
+                    let attr = match i {
+                        0 => clut,
+                        1 => tpage,
+                        _ => 0,
+                    };
+                    packet[len] = u as u32 | (v as u32) << 8 | attr << 16;
+                    len += 1;
+                }
+            }
+            if self.ot.insert(f.ot_index as usize, &packet[..len]).is_ok() {
+                stats.drawn += 1;
+            }
+            // An untextured polygon has no texpage attribute to carry its blend mode: a
+            // draw-mode packet (E1) linked after it at the same entry comes out just before
+            // it (gpu.md §2, §6).
+            if let (None, Some(mode)) = (f.texture, f.blend) {
+                let e1 = 0xE100_0000 | (dither as u32) << 9 | u32::from(mode & 3) << 5;
+                // A full primitive buffer leaves the polygon in the default mode.
+                let _ = self.ot.insert(f.ot_index as usize, &[e1]);
+            }
+        }
+    }
+}
