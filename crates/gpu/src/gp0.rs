@@ -4,16 +4,17 @@
 
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
-use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
+use crate::rasterizer::{Rows, draw_line_rows, draw_rectangle_rows, draw_triangle_rows};
 use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
 /// The longest fixed-size packet: a Gouraud textured quad, 12 words.
-const MAX_PACKET: usize = 12;
+pub(crate) const MAX_PACKET: usize = 12;
 
 /// What incoming GP0 words mean right now.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Mode {
     /// Collecting a command packet.
     #[default]
@@ -26,18 +27,94 @@ enum Mode {
 
 /// A polyline in progress (gpu.md §2, §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-struct Polyline {
-    line: Line,
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub(crate) struct Polyline {
+    pub(crate) line: Line,
     /// Gouraud: the colour word of the next vertex has been read.
     pending_color: Option<[u8; 3]>,
 }
 
+/// What one word after a polyline's first segment does (gpu.md §2, §4).
+pub(crate) enum PolylineStep {
+    /// The terminator: the polyline ends.
+    End,
+    /// A Gouraud colour word: the vertex position follows.
+    Color(Polyline),
+    /// A vertex: the segment from the previous vertex is drawn.
+    Segment(Polyline),
+}
+
+impl Polyline {
+    /// A polyline continuing after its first segment.
+    pub(crate) fn new(line: Line) -> Self {
+        Self {
+            line,
+            pending_color: None,
+        }
+    }
+
+    /// Consume the next word (gpu.md §2: the terminator is tested where the next vertex's
+    /// first word would be).
+    pub(crate) fn step(mut self, draw: &DrawState, word: u32) -> PolylineStep {
+        let expecting_first_word = !self.line.gouraud || self.pending_color.is_none();
+        if expecting_first_word && is_terminator(word) {
+            return PolylineStep::End;
+        }
+        if self.line.gouraud && self.pending_color.is_none() {
+            self.pending_color = Some(color::unpack888(word));
+            return PolylineStep::Color(self);
+        }
+        let last = self.line.vertices[1];
+        let mut next = Gpu::vertex(draw, word, 0);
+        next.color = self.pending_color.unwrap_or(last.color);
+        self.line.vertices = [last, next];
+        self.pending_color = None;
+        PolylineStep::Segment(self)
+    }
+}
+
+/// A polygon packet decoded against the drawing state it meets (gpu.md §2, §3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct PolygonPacket {
+    /// The first triangle (v0, v1, v2).
+    pub(crate) first: Triangle,
+    /// A quad's second triangle (v1, v2, v3).
+    pub(crate) second: Option<Triangle>,
+    /// The draw mode after the packet: a textured polygon's texpage attribute rewrites it.
+    pub(crate) mode: DrawMode,
+    /// The command carries texture coordinates (bit 26), even if texturing is disabled.
+    pub(crate) has_uv: bool,
+}
+
 /// GP0 packet assembly state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Gp0State {
     buf: [u32; MAX_PACKET],
     len: usize,
     mode: Mode,
+}
+
+/// GP0 input that has started but not finished: what a stream that stops here leaves
+/// behind (gpu.md §2, §8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PendingInput {
+    /// A command packet with fewer words than its command needs.
+    Packet {
+        /// The packet's first (command) word.
+        command: u32,
+        /// Words received, the command word included.
+        received: usize,
+        /// Words the command needs.
+        expected: usize,
+    },
+    /// A CPU-to-VRAM transfer (GP0 A0h) still waiting for data words.
+    Transfer {
+        /// Data words still expected (two pixels a word).
+        remaining_words: u32,
+    },
+    /// A polyline (GP0 48h-5Fh with bit 27) not yet ended by its terminator word.
+    Polyline,
 }
 
 impl Gp0State {
@@ -64,7 +141,7 @@ fn takes_fifo_space(cmd: u32) -> bool {
 }
 
 /// Words in the packet a command word starts (gpu.md §2).
-fn packet_len(cmd: u32) -> usize {
+pub(crate) fn packet_len(cmd: u32) -> usize {
     let op = cmd >> 24;
     match op {
         0x02 => 3,
@@ -93,12 +170,12 @@ fn packet_len(cmd: u32) -> usize {
 }
 
 /// Sign-extend the 11-bit field (gpu.md §2).
-const fn sext11(v: u32) -> i32 {
+pub(crate) const fn sext11(v: u32) -> i32 {
     ((v << 21) as i32) >> 21
 }
 
 /// The polyline terminator, tested where the next vertex's first word would be (gpu.md §2).
-const fn is_terminator(word: u32) -> bool {
+pub(crate) const fn is_terminator(word: u32) -> bool {
     word & 0xF000_F000 == 0x5000_5000
 }
 
@@ -142,6 +219,180 @@ impl DrawMode {
     }
 }
 
+/// GP0(E1h)-(E6h): update the drawing environment (gpu.md §2).
+pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_allowed: bool) {
+    match cmd >> 24 {
+        0xE1 => {
+            let texture_disable = cmd & (1 << 11) != 0 && texture_disable_allowed;
+            draw.mode = DrawMode::from_e1(cmd);
+            draw.mode.texture_disable = texture_disable;
+        }
+        0xE2 => {
+            let w = &mut draw.window;
+            w.mask_x = (cmd & 0x1F) as u8;
+            w.mask_y = (cmd >> 5 & 0x1F) as u8;
+            w.offset_x = (cmd >> 10 & 0x1F) as u8;
+            w.offset_y = (cmd >> 15 & 0x1F) as u8;
+        }
+        // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
+        // "Modelled GPU version").
+        0xE3 => {
+            draw.area.left = (cmd & 0x3FF) as u16;
+            draw.area.top = (cmd >> 10 & 0x3FF) as u16;
+        }
+        0xE4 => {
+            draw.area.right = (cmd & 0x3FF) as u16;
+            draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
+        }
+        0xE5 => {
+            draw.offset_x = sext11(cmd & 0x7FF) as i16;
+            draw.offset_y = sext11(cmd >> 11 & 0x7FF) as i16;
+        }
+        0xE6 => {
+            draw.mask.set = cmd & 1 != 0;
+            draw.mask.check = cmd & 2 != 0;
+        }
+        _ => {}
+    }
+}
+
+/// Textures apply unless E1.11 disabled them after GP1(09h) allowed it (gpu.md §2).
+fn textures_enabled(mode: &DrawMode, texture_disable_allowed: bool) -> bool {
+    !(mode.texture_disable && texture_disable_allowed)
+}
+
+/// The texture of a primitive: the page and depth of `mode`, the CLUT attribute given.
+fn texture(mode: &DrawMode, clut_attr: u32, raw: bool) -> Texture {
+    Texture {
+        page_x: mode.page_x,
+        page_y: mode.page_y,
+        depth: mode.depth,
+        clut_x: ((clut_attr & 0x3F) * 16) as u16,
+        clut_y: (clut_attr >> 6 & 0x1FF) as u16,
+        raw,
+    }
+}
+
+/// Decode a polygon packet (gpu.md §2, §3).
+pub(crate) fn polygon_packet(
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    texture_disable_allowed: bool,
+) -> PolygonPacket {
+    let cmd = p[0];
+    let gouraud = cmd & (1 << 28) != 0;
+    let quad = cmd & (1 << 27) != 0;
+    let has_uv = cmd & (1 << 26) != 0;
+    let semi = cmd & (1 << 25) != 0;
+    let raw = cmd & (1 << 24) != 0;
+    let count = if quad { 4 } else { 3 };
+    let mut mode = draw.mode;
+    let mut verts = [Vertex::default(); 4];
+    let mut clut_attr = 0;
+    let mut i = 1;
+    for (n, v) in verts.iter_mut().take(count).enumerate() {
+        let rgb = if n > 0 && gouraud {
+            i += 1;
+            p.get(i - 1).copied().unwrap_or(0)
+        } else {
+            cmd
+        };
+        *v = Gpu::vertex(draw, p.get(i).copied().unwrap_or(0), rgb);
+        i += 1;
+        if has_uv {
+            let uv = p.get(i).copied().unwrap_or(0);
+            i += 1;
+            v.u = uv as u8;
+            v.v = (uv >> 8) as u8;
+            match n {
+                0 => clut_attr = uv >> 16,
+                1 => mode.set_texpage(uv >> 16),
+                _ => {}
+            }
+        }
+    }
+    if has_uv && !texture_disable_allowed {
+        mode.texture_disable = false;
+    }
+    let textured = has_uv && textures_enabled(&mode, texture_disable_allowed);
+    let first = Triangle {
+        vertices: [verts[0], verts[1], verts[2]],
+        gouraud,
+        texture: textured.then(|| texture(&mode, clut_attr, raw)),
+        blend: semi.then_some(mode.blend),
+        dither: mode.dither && dither_applies(gouraud, textured, raw),
+    };
+    let second = quad.then_some(Triangle {
+        vertices: [verts[1], verts[2], verts[3]],
+        ..first
+    });
+    PolygonPacket {
+        first,
+        second,
+        mode,
+        has_uv,
+    }
+}
+
+/// Decode a line packet's first segment (gpu.md §2, §4).
+pub(crate) fn line_packet(p: &[u32; MAX_PACKET], draw: &DrawState) -> Line {
+    let cmd = p[0];
+    let gouraud = cmd & (1 << 28) != 0;
+    let semi = cmd & (1 << 25) != 0;
+    let v0 = Gpu::vertex(draw, p[1], cmd);
+    let v1 = if gouraud {
+        Gpu::vertex(draw, p[3], p[2])
+    } else {
+        Gpu::vertex(draw, p[2], cmd)
+    };
+    Line {
+        vertices: [v0, v1],
+        gouraud,
+        blend: semi.then_some(draw.mode.blend),
+        dither: draw.mode.dither,
+    }
+}
+
+/// Decode a rectangle packet (gpu.md §2, §5).
+pub(crate) fn rectangle_packet(
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    texture_disable_allowed: bool,
+) -> Rectangle {
+    let cmd = p[0];
+    let textured = cmd & (1 << 26) != 0 && textures_enabled(&draw.mode, texture_disable_allowed);
+    let has_uv = cmd & (1 << 26) != 0;
+    let semi = cmd & (1 << 25) != 0;
+    let raw = cmd & (1 << 24) != 0;
+    let mut origin = Gpu::vertex(draw, p[1], cmd);
+    let mut i = 2;
+    let mut clut_attr = 0;
+    if has_uv {
+        origin.u = p[2] as u8;
+        origin.v = (p[2] >> 8) as u8;
+        clut_attr = p[2] >> 16;
+        i = 3;
+    }
+    let (width, height) = match (cmd >> 27) & 3 {
+        0 => {
+            let wh = p.get(i).copied().unwrap_or(0);
+            ((wh & 0x3FF) as u16, (wh >> 16 & 0x1FF) as u16)
+        }
+        1 => (1, 1),
+        2 => (8, 8),
+        _ => (16, 16),
+    };
+    Rectangle {
+        origin,
+        width,
+        height,
+        texture: textured.then(|| texture(&draw.mode, clut_attr, raw)),
+        blend: semi.then_some(draw.mode.blend),
+        flip_x: draw.mode.flip_x,
+        flip_y: draw.mode.flip_y,
+    }
+}
+
 impl Gpu {
     /// One word written to the GP0 port.
     pub fn gp0(&mut self, word: u32) {
@@ -178,13 +429,34 @@ impl Gpu {
         }
     }
 
+    /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
+    /// transfer or an unterminated polyline. `None` when the next word starts a new command.
+    pub fn pending_input(&self) -> Option<PendingInput> {
+        match self.gp0.mode {
+            Mode::Write(t) => Some(PendingInput::Transfer {
+                remaining_words: t.remaining_pixels().div_ceil(2),
+            }),
+            Mode::Polyline(_) => Some(PendingInput::Polyline),
+            Mode::Command if self.gp0.len > 0 => {
+                let command = self.gp0.buf[0];
+                Some(PendingInput::Packet {
+                    command,
+                    received: self.gp0.len,
+                    expected: packet_len(command),
+                })
+            }
+            Mode::Command => None,
+        }
+    }
+
     /// Execute a complete packet; returns its cost in draw units.
     fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         match cmd >> 24 {
             0x01 => self.clut.invalidate(),
             0x02 => {
-                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2]);
+                let rows = self.draw_rows();
+                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2], rows);
                 return Cost::fill(w, h);
             }
             0x1F => {
@@ -205,41 +477,26 @@ impl Gpu {
                 self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
             }
             0xC0..=0xDF => self.read = ReadTransfer::new(TransferRect::decode(p[1], p[2])),
-            0xE1 => {
-                let texture_disable = cmd & (1 << 11) != 0 && self.texture_disable_allowed;
-                self.draw.mode = DrawMode::from_e1(cmd);
-                self.draw.mode.texture_disable = texture_disable;
-            }
-            0xE2 => {
-                let w = &mut self.draw.window;
-                w.mask_x = (cmd & 0x1F) as u8;
-                w.mask_y = (cmd >> 5 & 0x1F) as u8;
-                w.offset_x = (cmd >> 10 & 0x1F) as u8;
-                w.offset_y = (cmd >> 15 & 0x1F) as u8;
-            }
-            0xE3 => {
-                self.draw.area.left = (cmd & 0x3FF) as u16;
-                self.draw.area.top = (cmd >> 10 & 0x1FF) as u16;
-            }
-            0xE4 => {
-                self.draw.area.right = (cmd & 0x3FF) as u16;
-                self.draw.area.bottom = (cmd >> 10 & 0x1FF) as u16;
-            }
-            0xE5 => {
-                self.draw.offset_x = sext11(cmd & 0x7FF) as i16;
-                self.draw.offset_y = sext11(cmd >> 11 & 0x7FF) as i16;
-            }
-            0xE6 => {
-                self.draw.mask.set = cmd & 1 != 0;
-                self.draw.mask.check = cmd & 2 != 0;
-            }
+            0xE1..=0xE6 => apply_environment(&mut self.draw, cmd, self.texture_disable_allowed),
             _ => {}
         }
         0
     }
 
+    /// The lines drawing may write: in 480i (GP1(08h) bits 2 and 5) with GP0(E1h) bit 10
+    /// clear, not those of the field being displayed, whose VRAM lines have bit 0 equal to
+    /// that of the display start line plus the field (docs/hardware/gpu.md §8; psx-spx
+    /// "GP1(08h)", "GPU Status Register" bit 31).
+    fn draw_rows(&self) -> Rows {
+        if self.display.mode & 0x24 == 0x24 && !self.draw.mode.draw_to_display {
+            Rows::SkipParity(self.displayed_line_parity() as u8)
+        } else {
+            Rows::All
+        }
+    }
+
     /// A vertex from a position word plus the drawing offset (gpu.md §2).
-    fn vertex(draw: &DrawState, pos: u32, rgb: u32) -> Vertex {
+    pub(crate) fn vertex(draw: &DrawState, pos: u32, rgb: u32) -> Vertex {
         Vertex {
             x: sext11(pos & 0x7FF) + draw.offset_x as i32,
             y: sext11(pos >> 16 & 0x7FF) + draw.offset_y as i32,
@@ -249,169 +506,69 @@ impl Gpu {
         }
     }
 
-    fn textures_enabled(&self) -> bool {
-        !(self.draw.mode.texture_disable && self.texture_disable_allowed)
-    }
-
     fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         let gouraud = cmd & (1 << 28) != 0;
-        let quad = cmd & (1 << 27) != 0;
-        let textured = cmd & (1 << 26) != 0;
         let semi = cmd & (1 << 25) != 0;
-        let raw = cmd & (1 << 24) != 0;
-        let count = if quad { 4 } else { 3 };
-        let mut verts = [Vertex::default(); 4];
-        let mut clut_attr = 0;
-        let mut i = 1;
-        for (n, v) in verts.iter_mut().take(count).enumerate() {
-            let rgb = if n > 0 && gouraud {
-                i += 1;
-                p.get(i - 1).copied().unwrap_or(0)
-            } else {
-                cmd
-            };
-            *v = Self::vertex(&self.draw, p.get(i).copied().unwrap_or(0), rgb);
-            i += 1;
-            if textured {
-                let uv = p.get(i).copied().unwrap_or(0);
-                i += 1;
-                v.u = uv as u8;
-                v.v = (uv >> 8) as u8;
-                match n {
-                    0 => clut_attr = uv >> 16,
-                    1 => self.draw.mode.set_texpage(uv >> 16),
-                    _ => {}
-                }
-            }
-        }
-        if textured && !self.texture_disable_allowed {
-            self.draw.mode.texture_disable = false;
-        }
-        let textured = textured && self.textures_enabled();
-        let texture = textured.then(|| self.texture(clut_attr, raw));
-        let clut_units = texture.map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
+        let packet = polygon_packet(p, &self.draw, self.texture_disable_allowed);
+        self.draw.mode = packet.mode;
+        let tri = packet.first;
+        let textured = tri.texture.is_some();
+        let clut_units = tri
+            .texture
+            .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let read_back = semi || self.draw.mask.check;
-        let tri = Triangle {
-            vertices: [verts[0], verts[1], verts[2]],
-            gouraud,
-            texture,
-            blend: semi.then_some(self.draw.mode.blend),
-            dither: self.draw.mode.dither && dither_applies(gouraud, textured, raw),
-        };
-        let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        let rows = self.draw_rows();
+        let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
-        if quad {
-            let second = Triangle {
-                vertices: [verts[1], verts[2], verts[3]],
-                ..tri
-            };
-            let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &second);
+        if let Some(second) = &packet.second {
+            let drawn =
+                draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, second, rows);
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
         units
     }
 
-    /// The texture of a primitive: E1's page and depth, the CLUT attribute given.
-    fn texture(&self, clut_attr: u32, raw: bool) -> Texture {
-        let m = &self.draw.mode;
-        Texture {
-            page_x: m.page_x,
-            page_y: m.page_y,
-            depth: m.depth,
-            clut_x: ((clut_attr & 0x3F) * 16) as u16,
-            clut_y: (clut_attr >> 6 & 0x1FF) as u16,
-            raw,
-        }
-    }
-
     fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        let cmd = p[0];
-        let gouraud = cmd & (1 << 28) != 0;
-        let polyline = cmd & (1 << 27) != 0;
-        let semi = cmd & (1 << 25) != 0;
-        let v0 = Self::vertex(&self.draw, p[1], cmd);
-        let v1 = if gouraud {
-            Self::vertex(&self.draw, p[3], p[2])
-        } else {
-            Self::vertex(&self.draw, p[2], cmd)
-        };
-        let line = Line {
-            vertices: [v0, v1],
-            gouraud,
-            blend: semi.then_some(self.draw.mode.blend),
-            dither: self.draw.mode.dither,
-        };
-        let drawn = draw_line(&mut self.vram, &self.draw, &line);
-        if polyline {
-            self.gp0.mode = Mode::Polyline(Polyline {
-                line,
-                pending_color: None,
-            });
+        let line = line_packet(p, &self.draw);
+        let rows = self.draw_rows();
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);
+        if p[0] & (1 << 27) != 0 {
+            self.gp0.mode = Mode::Polyline(Polyline::new(line));
         }
         Cost::line(drawn)
     }
 
     /// One polyline word; returns the cost of the unit it completes (a segment, or the
     /// terminator), in draw units.
-    fn polyline_word(&mut self, mut p: Polyline, word: u32) -> Option<u32> {
-        let expecting_first_word = !p.line.gouraud || p.pending_color.is_none();
-        if expecting_first_word && is_terminator(word) {
-            self.gp0.mode = Mode::Command;
-            return Some(0);
+    fn polyline_word(&mut self, p: Polyline, word: u32) -> Option<u32> {
+        match p.step(&self.draw, word) {
+            PolylineStep::End => {
+                self.gp0.mode = Mode::Command;
+                Some(0)
+            }
+            PolylineStep::Color(p) => {
+                self.gp0.mode = Mode::Polyline(p);
+                None
+            }
+            PolylineStep::Segment(p) => {
+                let rows = self.draw_rows();
+                let drawn = draw_line_rows(&mut self.vram, &self.draw, &p.line, rows);
+                self.gp0.mode = Mode::Polyline(p);
+                Some(Cost::line(drawn))
+            }
         }
-        if p.line.gouraud && p.pending_color.is_none() {
-            p.pending_color = Some(color::unpack888(word));
-            self.gp0.mode = Mode::Polyline(p);
-            return None;
-        }
-        let last = p.line.vertices[1];
-        let mut next = Self::vertex(&self.draw, word, 0);
-        next.color = p.pending_color.unwrap_or(last.color);
-        p.line.vertices = [last, next];
-        p.pending_color = None;
-        let drawn = draw_line(&mut self.vram, &self.draw, &p.line);
-        self.gp0.mode = Mode::Polyline(p);
-        Some(Cost::line(drawn))
     }
 
     fn rectangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        let cmd = p[0];
-        let textured = cmd & (1 << 26) != 0 && self.textures_enabled();
-        let has_uv = cmd & (1 << 26) != 0;
-        let semi = cmd & (1 << 25) != 0;
-        let raw = cmd & (1 << 24) != 0;
-        let mut origin = Self::vertex(&self.draw, p[1], cmd);
-        let mut i = 2;
-        let mut clut_attr = 0;
-        if has_uv {
-            origin.u = p[2] as u8;
-            origin.v = (p[2] >> 8) as u8;
-            clut_attr = p[2] >> 16;
-            i = 3;
-        }
-        let (width, height) = match (cmd >> 27) & 3 {
-            0 => {
-                let wh = p.get(i).copied().unwrap_or(0);
-                ((wh & 0x3FF) as u16, (wh >> 16 & 0x1FF) as u16)
-            }
-            1 => (1, 1),
-            2 => (8, 8),
-            _ => (16, 16),
-        };
-        let texture = textured.then(|| self.texture(clut_attr, raw));
-        let clut_units = texture.map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
-        let rect = Rectangle {
-            origin,
-            width,
-            height,
-            texture,
-            blend: semi.then_some(self.draw.mode.blend),
-            flip_x: self.draw.mode.flip_x,
-            flip_y: self.draw.mode.flip_y,
-        };
-        let drawn = draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        let semi = p[0] & (1 << 25) != 0;
+        let rect = rectangle_packet(p, &self.draw, self.texture_disable_allowed);
+        let clut_units = rect
+            .texture
+            .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
+        let rows = self.draw_rows();
+        let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
         clut_units.saturating_add(Cost::rectangle(semi || self.draw.mask.check, drawn))
     }
 }

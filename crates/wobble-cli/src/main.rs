@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand, PageDepth};
 
+mod inspect;
 mod output;
 mod render;
 
@@ -32,6 +33,9 @@ enum Command {
     },
     /// Run a GP0/GP1 command stream on a fresh GPU and write VRAM as PNG and/or raw.
     Replay(ReplayArgs),
+    /// Step through a GP0/GP1 command stream draw by draw: writes an HTML report
+    /// (docs/inspect.md).
+    Inspect(inspect::InspectArgs),
     /// Convert a raw VRAM file to PNG: whole VRAM, a display area, or a texture page.
     Dump(DumpArgs),
     /// Measure what each accuracy knob costs in time and in error against an f64 reference
@@ -333,6 +337,10 @@ fn main() -> ExitCode {
         } => gte_replay(file, *emit),
         Command::Replay(args) => replay(args).map(|()| true),
         Command::Dump(args) => dump(args).map(|()| true),
+        Command::Inspect(args) => inspect::run(args).map(|summary| {
+            println!("{summary}");
+            true
+        }),
         Command::Trade(args) => trade(args).map(|()| true),
     };
     match result {

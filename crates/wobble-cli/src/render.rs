@@ -56,6 +56,9 @@ pub struct RenderArgs {
     /// Write outputs estimated above 256 MB (many frames) instead of refusing.
     #[arg(long)]
     pub large_output: bool,
+    /// Write a draw-by-draw report of the last frame into this directory (docs/inspect.md).
+    #[arg(long)]
+    pub inspect: Option<PathBuf>,
 }
 
 /// The GTE divide, as `--divide` takes it (the scene's `[accuracy] divide`).
@@ -199,7 +202,21 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     let start = Instant::now();
     let mut total = FrameStats::default();
     for frame in 0..args.frames {
-        let stats = renderer.render_frame(frame);
+        let stats = match &args.inspect {
+            Some(dir) if frame + 1 == args.frames => {
+                let (stats, trace) = renderer.render_frame_traced(frame)?;
+                let title = format!("frame {frame}");
+                wobble::inspect::write_frame_report(
+                    renderer.scene(),
+                    &trace,
+                    dir,
+                    &title,
+                    wobble::inspect::InspectOptions::default(),
+                )?;
+                stats
+            }
+            _ => renderer.render_frame(frame),
+        };
         total.accumulate(&stats);
         if gif_path.is_some() || args.png_dir.is_some() {
             let img = renderer.image();

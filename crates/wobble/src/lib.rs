@@ -6,9 +6,11 @@
 //! - [`reference`]: the f64 reference renderer the PS1 output is measured against;
 //! - [`trade`]: the accuracy/cost trade report;
 //! - [`gte_vectors`]: replay of GTE test vectors;
-//! - [`vram_image`]: VRAM to images and the raw VRAM file format.
+//! - [`vram_image`]: VRAM to images and the raw VRAM file format;
+//! - [`inspect`]: the draw-by-draw report of a command stream or a rendered frame.
 
 pub mod gte_vectors;
+pub mod inspect;
 pub mod pipeline;
 pub mod reference;
 pub mod scene;

@@ -1,7 +1,9 @@
 //! Line rasterization (gpu.md §4): both endpoints drawn, 32.32 positions with a half-pixel
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
-use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use super::{
+    Coverage, DrawCount, DropReason, PixelEnv, TEX_NONE, line_coverage, shade_pixel, wrap11,
+};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Line;
 use crate::state::DrawState;
@@ -18,11 +20,13 @@ pub(super) fn draw<
     const BLEND: bool,
     const DITHER: bool,
     const MASK_CHECK: bool,
+    const FILTERED: bool,
 >(
     vram: &mut [u16; VRAM_LEN],
     state: &DrawState,
     env_ref: &PixelEnv,
     line: &Line,
+    rows: super::Rows,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -31,7 +35,10 @@ pub(super) fn draw<
     p0.y = wrap11(p0.y);
     p1.x = wrap11(p1.x);
     p1.y = wrap11(p1.y);
-    if (p1.x - p0.x).abs() >= 1024 || (p1.y - p0.y).abs() >= 512 {
+    // Size drop (gpu.md §4). A line clipped away still walks its points (their cost is
+    // counted); each is rejected by the per-point area test below.
+    let coverage = line_coverage([(p0.x, p0.y), (p1.x, p1.y)], &state.area);
+    if coverage == Coverage::Dropped(DropReason::SizeLimit) {
         return DrawCount::default();
     }
     if !GOURAUD {
@@ -69,6 +76,7 @@ pub(super) fn draw<
             && px <= area.right as i32
             && py >= area.top as i32
             && py <= area.bottom as i32
+            && (!FILTERED || rows.keeps(py))
         {
             let rgb = [color[0] >> 12, color[1] >> 12, color[2] >> 12];
             let shade = if DITHER {

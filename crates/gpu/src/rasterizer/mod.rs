@@ -11,7 +11,7 @@ mod triangle;
 
 use crate::color::{ShadeTable, blend, pack555};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
-use crate::state::{BlendMode, DrawState, TextureDepth};
+use crate::state::{BlendMode, DrawState, DrawingArea, TextureDepth};
 use crate::texture::{ClutCache, Sampler};
 use crate::{VRAM_LEN, Vram};
 
@@ -160,18 +160,267 @@ pub(crate) fn fill_flat_span(
     }
 }
 
+/// The VRAM lines a primitive may write. In 480i with GP0(E1h) bit 10 clear, drawing
+/// skips the lines of the field being displayed (docs/hardware/gpu.md §8; psx-spx "GP1(08h)":
+/// the interlace flag affects GP0 drawing). Chosen once per primitive: an unfiltered
+/// primitive walks its rows as before, a filtered one walks every second row.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Rows {
+    /// Every line.
+    #[default]
+    All,
+    /// Lines whose bit 0 differs from this value (0 or 1).
+    SkipParity(u8),
+}
+
+impl Rows {
+    /// The first row at or after `y` that is drawn.
+    #[inline(always)]
+    fn first_from(parity: u8, y: i32) -> i32 {
+        if (y & 1) as u8 == parity & 1 {
+            y + 1
+        } else {
+            y
+        }
+    }
+
+    /// How many rows of `lo..hi` are drawn.
+    #[inline(always)]
+    pub(crate) fn count(self, lo: i32, hi: i32) -> u32 {
+        let mut n = 0u32;
+        if lo < hi {
+            match self {
+                Rows::All => n = (hi - lo) as u32,
+                Rows::SkipParity(p) => {
+                    let first = Self::first_from(p, lo);
+                    if first < hi {
+                        n = ((hi - first + 1) / 2) as u32;
+                    }
+                }
+            }
+        }
+        n
+    }
+
+    /// Call `f` for each drawn row of `lo..hi`, ascending.
+    #[inline(always)]
+    pub(crate) fn each(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
+        match self {
+            Rows::All => {
+                for y in lo..hi {
+                    f(y);
+                }
+            }
+            Rows::SkipParity(p) => {
+                let mut y = Self::first_from(p, lo);
+                while y < hi {
+                    f(y);
+                    y += 2;
+                }
+            }
+        }
+    }
+
+    /// Call `f` for each drawn row of `lo..hi`, descending.
+    #[inline(always)]
+    pub(crate) fn each_rev(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
+        match self {
+            Rows::All => {
+                for y in (lo..hi).rev() {
+                    f(y);
+                }
+            }
+            Rows::SkipParity(p) => {
+                // The last drawn row below `hi`.
+                let mut y = hi - 1;
+                if (y & 1) as u8 == p & 1 {
+                    y -= 1;
+                }
+                while y >= lo {
+                    f(y);
+                    y -= 2;
+                }
+            }
+        }
+    }
+
+    /// Whether row `y` is drawn.
+    #[inline(always)]
+    pub fn keeps(self, y: i32) -> bool {
+        match self {
+            Rows::All => true,
+            Rows::SkipParity(p) => (y & 1) as u8 != p & 1,
+        }
+    }
+}
+
 /// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
     (v << 21) >> 21
 }
 
+/// Why the rasterizer draws nothing of a primitive (gpu.md §3-§5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum DropReason {
+    /// A vertex pair is 1024 or more apart in X or 512 or more in Y, after the drawing
+    /// offset and the 11-bit wrap: the whole triangle or line is dropped (gpu.md §3.2, §4).
+    SizeLimit,
+    /// A triangle whose vertices are collinear (the gradient denominator is 0, gpu.md §3.6),
+    /// or a rectangle of width or height 0 (gpu.md §5).
+    ZeroArea,
+    /// The primitive's bounding box lies entirely outside the drawing area (E3/E4), so no
+    /// pixel survives the clip (gpu.md §3.5, §4, §5).
+    Clipped,
+}
+
+impl DropReason {
+    /// A short human-readable description.
+    pub fn describe(self) -> &'static str {
+        match self {
+            DropReason::SizeLimit => {
+                "size limit: a vertex pair is >= 1024 apart in X or >= 512 in Y"
+            }
+            DropReason::ZeroArea => "zero area",
+            DropReason::Clipped => "clipped away: outside the drawing area",
+        }
+    }
+}
+
+/// An inclusive VRAM rectangle: every pixel a primitive can write lies inside it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PixelBounds {
+    /// Leftmost column.
+    pub left: u16,
+    /// Top line.
+    pub top: u16,
+    /// Rightmost column (inclusive).
+    pub right: u16,
+    /// Bottom line (inclusive).
+    pub bottom: u16,
+}
+
+impl PixelBounds {
+    /// Width in pixels.
+    pub fn width(&self) -> usize {
+        usize::from(self.right.saturating_sub(self.left)) + 1
+    }
+    /// Height in lines.
+    pub fn height(&self) -> usize {
+        usize::from(self.bottom.saturating_sub(self.top)) + 1
+    }
+}
+
+/// What the rasterizer does with a primitive, decided before any pixel is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Coverage {
+    /// Rasterized; no pixel outside these bounds is written (a thin triangle may still
+    /// cover no pixel).
+    Drawn(PixelBounds),
+    /// Nothing drawn, for this reason.
+    Dropped(DropReason),
+}
+
+impl Coverage {
+    /// The drop reason, if the primitive is not drawn.
+    pub fn dropped(&self) -> Option<DropReason> {
+        match self {
+            Coverage::Drawn(_) => None,
+            Coverage::Dropped(r) => Some(*r),
+        }
+    }
+}
+
+/// The size-drop test on wrapped vertices (gpu.md §3.2, §4).
+#[inline(always)]
+fn exceeds_size_limit(a: (i32, i32), b: (i32, i32)) -> bool {
+    (a.0 - b.0).abs() >= 1024 || (a.1 - b.1).abs() >= 512
+}
+
+/// Clip an inclusive box of wrapped coordinates to the drawing area.
+#[inline(always)]
+fn clip_box(x0: i32, x1: i32, y0: i32, y1: i32, area: &DrawingArea) -> Coverage {
+    let left = x0.max(area.left as i32);
+    let right = x1.min(area.right as i32);
+    let top = y0.max(area.top as i32);
+    let bottom = y1.min(area.bottom as i32);
+    if left > right || top > bottom {
+        return Coverage::Dropped(DropReason::Clipped);
+    }
+    // The area is at most 1023x511, so the clipped box fits u16.
+    Coverage::Drawn(PixelBounds {
+        left: left as u16,
+        top: top as u16,
+        right: right as u16,
+        bottom: bottom as u16,
+    })
+}
+
+/// The triangle tests on wrapped vertices: size drop, zero area, drawing-area clip. Rows
+/// `[min y, max y)` and columns `[min x, max x)` bound the spans (gpu.md §3.4-§3.5), so
+/// the inclusive box of the vertices contains every drawn pixel.
+#[inline(always)]
+pub(crate) fn triangle_coverage(p: [(i32, i32); 3], area: &DrawingArea) -> Coverage {
+    let [a, b, c] = p;
+    if exceeds_size_limit(a, b) || exceeds_size_limit(b, c) || exceeds_size_limit(a, c) {
+        return Coverage::Dropped(DropReason::SizeLimit);
+    }
+    // Twice the signed area: the gradient denominator up to sign (gpu.md §3.6).
+    let cross = (b.0 - a.0) as i64 * (c.1 - b.1) as i64 - (c.0 - b.0) as i64 * (b.1 - a.1) as i64;
+    if cross == 0 {
+        return Coverage::Dropped(DropReason::ZeroArea);
+    }
+    clip_box(
+        a.0.min(b.0).min(c.0),
+        a.0.max(b.0).max(c.0),
+        a.1.min(b.1).min(c.1),
+        a.1.max(b.1).max(c.1),
+        area,
+    )
+}
+
+/// The line tests on wrapped endpoints: size drop, drawing-area clip (gpu.md §4). Points
+/// lie between the endpoints; negative positions wrap to 1024 and above (`& 2047`), past
+/// any drawing area.
+#[inline(always)]
+pub(crate) fn line_coverage(p: [(i32, i32); 2], area: &DrawingArea) -> Coverage {
+    let [a, b] = p;
+    if exceeds_size_limit(a, b) {
+        return Coverage::Dropped(DropReason::SizeLimit);
+    }
+    clip_box(a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1), area)
+}
+
+/// What the rasterizer does with a triangle under a drawing area (gpu.md §3): the same
+/// tests [`draw_triangle`] applies before drawing.
+pub fn classify_triangle(tri: &Triangle, area: &DrawingArea) -> Coverage {
+    let v = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
+    triangle_coverage(v, area)
+}
+
+/// What the rasterizer does with a line segment under a drawing area (gpu.md §4): the
+/// same tests [`draw_line`] applies before drawing.
+pub fn classify_line(line: &Line, area: &DrawingArea) -> Coverage {
+    let v = line.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
+    line_coverage(v, area)
+}
+
+/// What the rasterizer does with a rectangle under a drawing area (gpu.md §5): the same
+/// clip [`draw_rectangle`] computes.
+pub fn classify_rectangle(rect: &Rectangle, area: &DrawingArea) -> Coverage {
+    if rect.width == 0 || rect.height == 0 {
+        return Coverage::Dropped(DropReason::ZeroArea);
+    }
+    match rectangle::clip(rect, area) {
+        Some((x_start, x_end, y_start, y_end)) => {
+            clip_box(x_start, x_end - 1, y_start, y_end - 1, area)
+        }
+        None => Coverage::Dropped(DropReason::Clipped),
+    }
+}
+
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
-
-fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
-    vram.as_mut_slice().try_into().ok()
-}
 
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
@@ -200,9 +449,18 @@ pub fn draw_triangle(
     clut: &mut ClutCache,
     tri: &Triangle,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_triangle_rows(vram, state, clut, tri, Rows::All)
+}
+
+/// [`draw_triangle`] writing only the lines `rows` keeps.
+pub fn draw_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    tri: &Triangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (g, b, d, m) = (
@@ -213,10 +471,10 @@ pub fn draw_triangle(
     );
     use triangle::draw;
     match texture_kind(tri.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, tri); [0,]; g, false, b, d, m),
-        1 => dispatch!(draw(vram, state, &env, tri); [1,]; g, raw, b, d, m),
-        2 => dispatch!(draw(vram, state, &env, tri); [2,]; g, raw, b, d, m),
-        _ => dispatch!(draw(vram, state, &env, tri); [3,]; g, raw, b, d, m),
+        0 => dispatch!(draw(vram, state, &env, tri, rows); [0,]; g, false, b, d, m),
+        1 => dispatch!(draw(vram, state, &env, tri, rows); [1,]; g, raw, b, d, m),
+        2 => dispatch!(draw(vram, state, &env, tri, rows); [2,]; g, raw, b, d, m),
+        _ => dispatch!(draw(vram, state, &env, tri, rows); [3,]; g, raw, b, d, m),
     }
 }
 
@@ -231,9 +489,7 @@ pub fn draw_triangle_precise(
     at: &[precise::PreciseVertex; 3],
     perspective: bool,
 ) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
@@ -248,9 +504,13 @@ pub fn draw_triangle_precise(
 
 /// Draw one line segment, both endpoints included (gpu.md §4). Returns the points stepped.
 pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_line_rows(vram, state, line, Rows::All)
+}
+
+/// [`draw_line`] writing only the lines `rows` keeps. Lines test each pixel's row, so the
+/// filter is a const parameter: an unfiltered line has no row test.
+pub fn draw_line_rows(vram: &mut Vram, state: &DrawState, line: &Line, rows: Rows) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -263,7 +523,8 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
         state.mask.check,
     );
     use line::draw;
-    dispatch!(draw(vram, state, &env, line); []; g, b, d, m)
+    let filtered = rows != Rows::All;
+    dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
 }
 
 /// Draw one rectangle (gpu.md §5). Returns what was drawn.
@@ -273,17 +534,26 @@ pub fn draw_rectangle(
     clut: &mut ClutCache,
     rect: &Rectangle,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_rectangle_rows(vram, state, clut, rect, Rows::All)
+}
+
+/// [`draw_rectangle`] writing only the lines `rows` keeps.
+pub fn draw_rectangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    rect: &Rectangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);
     let (b, m) = (rect.blend.is_some(), state.mask.check);
     use rectangle::draw;
     match texture_kind(rect.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, rect); [0,]; false, b, m),
-        1 => dispatch!(draw(vram, state, &env, rect); [1,]; raw, b, m),
-        2 => dispatch!(draw(vram, state, &env, rect); [2,]; raw, b, m),
-        _ => dispatch!(draw(vram, state, &env, rect); [3,]; raw, b, m),
+        0 => dispatch!(draw(vram, state, &env, rect, rows); [0,]; false, b, m),
+        1 => dispatch!(draw(vram, state, &env, rect, rows); [1,]; raw, b, m),
+        2 => dispatch!(draw(vram, state, &env, rect, rows); [2,]; raw, b, m),
+        _ => dispatch!(draw(vram, state, &env, rect, rows); [3,]; raw, b, m),
     }
 }

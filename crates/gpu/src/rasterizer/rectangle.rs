@@ -1,11 +1,24 @@
 //! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
-//! wrapped at 256 (decremented when flipped), clipped to the drawing area.
+//! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
+//! to the drawing area.
 
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
-use crate::state::DrawState;
+use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
+
+/// The drawn columns `[x_start, x_end)` and rows `[y_start, y_end)`: the rectangle at its
+/// wrapped origin clipped to the drawing area (gpu.md §5); `None` when nothing is left.
+#[inline(always)]
+pub(super) fn clip(rect: &Rectangle, area: &DrawingArea) -> Option<(i32, i32, i32, i32)> {
+    let (x0, y0) = (wrap11(rect.origin.x), wrap11(rect.origin.y));
+    let x_start = x0.max(area.left as i32);
+    let x_end = (x0 + rect.width as i32).min(area.right as i32 + 1);
+    let y_start = y0.max(area.top as i32);
+    let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
+    (x_start < x_end && y_start < y_end).then_some((x_start, x_end, y_start, y_end))
+}
 
 /// Draw with the pixel pipeline fixed by the const parameters.
 pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
@@ -13,22 +26,18 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
+    filter: super::Rows,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
     let o = rect.origin;
     let (x0, y0) = (wrap11(o.x), wrap11(o.y));
-    let area = state.area;
-    let x_start = x0.max(area.left as i32);
-    let x_end = (x0 + rect.width as i32).min(area.right as i32 + 1);
-    let y_start = y0.max(area.top as i32);
-    let y_end = (y0 + rect.height as i32).min(area.bottom as i32 + 1);
-    if x_start >= x_end || y_start >= y_end {
+    let Some((x_start, x_end, y_start, y_end)) = clip(rect, &state.area) else {
         return DrawCount::default();
-    }
+    };
     let mut row_count = DrawCount::default();
     row_count.span(x_start, x_end);
-    let rows = (y_end - y_start) as u32;
+    let rows = filter.count(y_start, y_end);
     let drawn = DrawCount {
         rows,
         pixels: row_count.pixels * rows,
@@ -38,13 +47,15 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
     let du: u8 = if rect.flip_x { 255 } else { 1 };
     let dv: u8 = if rect.flip_y { 255 } else { 1 };
+    // With the X flip the origin column samples u0 | 1, not u0 (docs/hardware/gpu.md §5).
+    let u0 = if rect.flip_x { o.u | 1 } else { o.u };
     // Texel at the first drawn column: u0 + (x_start - x0) steps.
-    let u_start = o.u.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
-    for y in y_start..y_end {
+    let u_start = u0.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
+    filter.each(y_start, y_end, |y| {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
             super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
-            continue;
+            return;
         }
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));
         let mut u = u_start;
@@ -60,6 +71,6 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             );
             u = u.wrapping_add(du);
         }
-    }
+    });
     drawn
 }

@@ -2,7 +2,7 @@
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
-use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
+use super::{Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, triangle_coverage, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
@@ -47,6 +47,7 @@ pub(super) fn draw<
     state: &DrawState,
     env: &PixelEnv,
     tri: &Triangle,
+    rows: super::Rows,
 ) -> DrawCount {
     let mut drawn = DrawCount::default();
     let mut v = tri.vertices.map(|p| Vtx {
@@ -60,11 +61,10 @@ pub(super) fn draw<
             p.v as i32,
         ],
     });
-    // Size drop (gpu.md §3.2).
-    for (i, j) in [(0, 1), (1, 2), (0, 2)] {
-        if (v[i].x - v[j].x).abs() >= 1024 || (v[i].y - v[j].y).abs() >= 512 {
-            return drawn;
-        }
+    // Size drop, zero area, clipped away (gpu.md §3.2, §3.6).
+    let corners = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
+    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
+        return drawn;
     }
     // Core vertex from X before sorting (gpu.md §3.3).
     let mut core = if v[1].x <= v[0].x {
@@ -194,27 +194,28 @@ pub(super) fn draw<
     // part top-down from b; core c, both bottom-up (from b, then from c).
     let base_start = edge_start(a.x);
     let base_at = |y: i32| base_start + (y - a.y) as i64 * base_step;
+    // Edges are evaluated per row from their start, so a row filter skips rows freely.
     if core == 0 {
         let bound = edge_start(a.x);
-        for y in a.y..b.y {
-            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step);
-        }
+        rows.each(a.y, b.y, |y| {
+            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step)
+        });
     } else {
         let bound = edge_start(b.x);
-        for y in (a.y..b.y).rev() {
-            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step);
-        }
+        rows.each_rev(a.y, b.y, |y| {
+            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step)
+        });
     }
     if core == 2 {
         let bound = edge_start(c.x);
-        for y in (b.y..c.y).rev() {
-            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step);
-        }
+        rows.each_rev(b.y, c.y, |y| {
+            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step)
+        });
     } else {
         let bound = edge_start(b.x);
-        for y in b.y..c.y {
-            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step);
-        }
+        rows.each(b.y, c.y, |y| {
+            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step)
+        });
     }
     drawn
 }

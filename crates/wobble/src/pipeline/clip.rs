@@ -19,7 +19,7 @@ const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
 pub(super) enum Verdict {
     /// Discarded whole: a vertex behind or too near the camera (SZ3 saturated, divide
     /// overflow), a saturated SX/SY, or a size the GPU would drop (gpu.md §3).
-    Drop,
+    Drop(super::trace::DropCause),
     /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (gte.md §7).
     Cull,
     /// Entirely outside the screen.
@@ -63,7 +63,7 @@ pub(super) fn classify(
     (w, h): (i32, i32),
 ) -> Verdict {
     if flag.intersects(DROP_FLAGS) {
-        return Verdict::Drop;
+        return Verdict::Drop(super::trace::DropCause::NearPlane);
     }
     if area <= 0 {
         return Verdict::Cull;
@@ -75,7 +75,7 @@ pub(super) fn classify(
     }
     // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (gpu.md §3).
     if gpu_drops(&xy[..3]) || (quad && gpu_drops(&xy[1..])) {
-        return Verdict::Drop;
+        return Verdict::Drop(super::trace::DropCause::SizeLimit);
     }
     Verdict::Draw {
         xy,

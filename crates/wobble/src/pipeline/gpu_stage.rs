@@ -93,21 +93,9 @@ impl Renderer {
     pub(super) fn gpu_stage(&mut self, frame: u32) {
         let screen = self.scene.screen;
         let buffer_y = (frame % 2) * screen.height as u32;
-        let (w, h) = (screen.width as u32, screen.height as u32);
         let dither = self.options.dither.unwrap_or(screen.dither);
-        let [r, g, b] = screen.background;
         let gpu = &mut self.gpu;
-        gpu.gp0_words(&[
-            0xE100_0000 | (dither as u32) << 9,
-            0xE200_0000,
-            0xE300_0000 | buffer_y << 10,
-            0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
-            0xE500_0000 | (buffer_y & 0x7FF) << 11,
-            0xE600_0000,
-            0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
-            buffer_y << 16,
-            h << 16 | w,
-        ]);
+        gpu.gp0_words(&frame_environment(&screen, buffer_y, dither));
         // Bad links cannot occur in a table this renderer built; a walk error leaves the
         // frame partly drawn rather than stopping the renderer.
         if self.options.precise() {
@@ -132,8 +120,9 @@ impl Renderer {
         } else {
             let _ = self.ot.walk_into(gpu);
         }
-        gpu.gp1(0x0500_0000 | buffer_y << 10);
+        gpu.gp1(display_word(buffer_y));
         self.display = gpu.display_area();
+        self.display.width = screen.width;
         self.display.height = screen.height;
     }
 }
@@ -154,4 +143,31 @@ pub(super) fn upload(gpu: &mut Gpu, x: u16, y: u16, width: usize, halfwords: &[u
         let hi = pair.get(1).copied().unwrap_or(0) as u32;
         gpu.gp0(hi << 16 | lo);
     }
+}
+
+/// The GP0 words that start a frame in the back buffer at line `buffer_y`: draw mode,
+/// texture window, drawing area, offset, mask, and a fill with the background colour.
+pub(super) fn frame_environment(
+    screen: &crate::scene::Screen,
+    buffer_y: u32,
+    dither: bool,
+) -> [u32; 9] {
+    let (w, h) = (screen.width as u32, screen.height as u32);
+    let [r, g, b] = screen.background;
+    [
+        0xE100_0000 | (dither as u32) << 9,
+        0xE200_0000,
+        0xE300_0000 | buffer_y << 10,
+        0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
+        0xE500_0000 | (buffer_y & 0x7FF) << 11,
+        0xE600_0000,
+        0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
+        buffer_y << 16,
+        h << 16 | w,
+    ]
+}
+
+/// GP1(05h): display the buffer at line `buffer_y`.
+pub(super) fn display_word(buffer_y: u32) -> u32 {
+    0x0500_0000 | buffer_y << 10
 }

@@ -5,6 +5,7 @@
 use super::clip::{Verdict, classify};
 use super::object::{angle, object_rotation, object_transform, to_fixed};
 use super::tessellate::PreparedFace;
+use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
 use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
 use gte::typed::{Geometry, I8F8, I8F24, I16F16, Matrix, Projection};
@@ -70,7 +71,13 @@ impl Renderer {
             // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (gte.md §8).
             g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
         }
-        for (object, prepared) in scene.objects.iter().zip(&self.objects) {
+        let mut trace = self.trace.as_deref_mut();
+        if let Some(t) = trace.as_deref_mut() {
+            t.clear();
+        }
+        for (object_index, (object, prepared)) in
+            scene.objects.iter().zip(&self.objects).enumerate()
+        {
             let r = object_rotation(object, frame);
             let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
             let (rt, tr) = object_transform(scene, object, frame);
@@ -100,23 +107,40 @@ impl Renderer {
                 let tpage = p.texpage(depth) | (blend.unwrap_or(0) as u32) << 5;
                 (p.clut_attr(), tpage)
             });
-            for face in &prepared.faces {
+            for (face_index, face) in prepared.faces.iter().enumerate() {
                 stack.push(*face, 0);
                 while let Some((face, level)) = stack.pop() {
                     let verdict = transform(g, &face, (w, h));
                     let split = level < prepared.level
                         && match verdict {
-                            Verdict::Drop => true,
+                            Verdict::Drop(_) => true,
                             Verdict::Draw { extent, .. } => extent > split_extent,
                             Verdict::Cull | Verdict::Offscreen => false,
                         };
+                    if let Some(t) = trace.as_deref_mut() {
+                        let fate = match verdict {
+                            _ if split => FaceFate::Split,
+                            Verdict::Drop(c) => FaceFate::Dropped(c),
+                            Verdict::Cull => FaceFate::Culled,
+                            Verdict::Offscreen => FaceFate::Offscreen,
+                            Verdict::Draw { .. } if scratch.len() >= capacity => FaceFate::Overflow,
+                            // The slot is filled in below.
+                            Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
+                        };
+                        t.faces.push(FaceRecord {
+                            object: object_index,
+                            face: face_index,
+                            level,
+                            fate,
+                        });
+                    }
                     if split {
                         stack.push_split(&face, level + 1);
                         continue;
                     }
                     stats.polygons += 1;
                     let (xy, sz, ir0) = match verdict {
-                        Verdict::Drop => {
+                        Verdict::Drop(_) => {
                             stats.dropped += 1;
                             continue;
                         }
@@ -191,12 +215,20 @@ impl Renderer {
                         }
                         precise_vertices.push(precise);
                     }
+                    let ot_index = ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16;
+                    if let Some(t) = trace.as_deref_mut() {
+                        let record = t.faces.len().saturating_sub(1);
+                        if let Some(r) = t.faces.last_mut() {
+                            r.fate = FaceFate::Drawn { ot_slot: ot_index };
+                        }
+                        t.scratch_face.push(record);
+                    }
                     scratch.push(ProjectedFace {
                         xy,
                         color,
                         uv: v.map(|p| p.texel()),
                         quad: face.quad,
-                        ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
+                        ot_index,
                         texture,
                         blend,
                     });

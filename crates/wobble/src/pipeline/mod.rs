@@ -13,13 +13,15 @@ mod gte_stage;
 pub mod object;
 mod ot_stage;
 pub mod tessellate;
+mod trace;
 
 pub use object::{angle, object_rotation, object_transform, prepare};
+pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{InvalidScene, Scene};
-use gpu::ordering_table::OrderingTable;
+use gpu::ordering_table::{OrderingTable, OtError};
 use gpu::rasterizer::precise::PreciseVertex;
 use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
@@ -110,6 +112,8 @@ pub enum RenderError {
     Scene(InvalidScene),
     /// An accuracy knob this build does not include (built without `accuracy-knobs`).
     Unsupported(gte::UnsupportedDivideMode),
+    /// The ordering table cannot be built.
+    OrderingTable(OtError),
 }
 
 impl fmt::Display for RenderError {
@@ -118,6 +122,7 @@ impl fmt::Display for RenderError {
             RenderError::Vram(e) => write!(f, "{e}"),
             RenderError::Scene(e) => write!(f, "{e}"),
             RenderError::Unsupported(e) => write!(f, "{e}"),
+            RenderError::OrderingTable(e) => write!(f, "{e}"),
         }
     }
 }
@@ -128,6 +133,7 @@ impl std::error::Error for RenderError {
             RenderError::Vram(e) => Some(e),
             RenderError::Scene(e) => Some(e),
             RenderError::Unsupported(e) => Some(e),
+            RenderError::OrderingTable(e) => Some(e),
         }
     }
 }
@@ -190,6 +196,8 @@ pub struct Renderer {
     /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
     /// filled only when the precise path is on, so the hardware path carries none of it.
     precise_vertices: Vec<[PreciseVertex; 4]>,
+    /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
+    trace: Option<Box<trace::TraceSink>>,
 }
 
 impl Renderer {
@@ -281,7 +289,8 @@ impl Renderer {
             .set_divide_mode(options.divide_mode)
             .map_err(RenderError::Unsupported)?;
         Ok(Renderer {
-            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
+            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
+                .map_err(RenderError::OrderingTable)?,
             scratch: Vec::with_capacity(capacity),
             stack: SplitStack::default(),
             capacity,
@@ -293,6 +302,7 @@ impl Renderer {
             display,
             clut: ClutCache::default(),
             precise_vertices: Vec::new(),
+            trace: None,
         })
     }
 

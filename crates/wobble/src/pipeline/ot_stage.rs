@@ -19,7 +19,14 @@ impl Renderer {
             }
             return;
         }
-        for f in &self.scratch {
+        for (k, f) in self.scratch.iter().enumerate() {
+            if let Some(t) = self.trace.as_deref_mut()
+                && let Some(&record) = t.scratch_face.get(k)
+            {
+                // The packet's node goes where the primitive buffer's free space starts.
+                t.node_face
+                    .push((self.ot.depth() + self.ot.used_words(), record));
+            }
             let n = if f.quad { 4 } else { 3 };
             // Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the flat
             // packet, which the GPU draws without colour interpolation.

@@ -1,0 +1,1095 @@
+//! Command decoding for debuggers and inspectors: what a GP0/GP1 command is, its fields,
+//! the primitives it hands the rasterizer and what the rasterizer does with each (drawn,
+//! or dropped and why), and the VRAM it may write.
+//!
+//! Decoding uses the packet-length rule, field decoders and primitive builders that GP0
+//! itself runs (gpu.md §2), and the drop tests are the rasterizer's own
+//! ([`crate::rasterizer::classify_triangle`] and friends), so a decoded command describes
+//! exactly what [`Gpu::gp0`] does with it. Decoding never changes the GPU.
+//!
+//! ```
+//! let mut gpu = gpu::Gpu::new();
+//! gpu.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
+//! let words = [0x2000_00FF, 0x0000_0000, 0x0000_0040, 0x0040_0000];
+//! let decoded = gpu.decode_gp0(&words);
+//! assert_eq!(decoded.kind, gpu::decode::Kind::Polygon);
+//! assert_eq!(decoded.name, "F3 polygon");
+//! assert!(decoded.primitives[0].coverage().dropped().is_none());
+//! ```
+#![deny(missing_docs)]
+
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
+
+use crate::command_stream::{Port, StreamCommand};
+use crate::gp0::{
+    self, MAX_PACKET, Polyline, PolylineStep, is_terminator, line_packet, packet_len,
+    polygon_packet, rectangle_packet,
+};
+use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex};
+use crate::rasterizer::{
+    Coverage, PixelBounds, classify_line, classify_rectangle, classify_triangle,
+};
+use crate::state::{BlendMode, DrawState, TextureDepth};
+use crate::transfer::TransferRect;
+use crate::{Gpu, VRAM_HEIGHT, VRAM_WIDTH};
+
+/// The kind of a GP0 or GP1 command (gpu.md §2, §8, §9).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// GP0 00h, 03h-1Eh, E0h, E7h-FFh: no operation.
+    Nop,
+    /// GP0 01h: invalidate the CLUT cache.
+    ClearCache,
+    /// GP0 02h: fill a rectangle (§8).
+    Fill,
+    /// GP0 1Fh: raise the GPU IRQ.
+    Irq,
+    /// GP0 20h-3Fh: triangle or quad (§3).
+    Polygon,
+    /// GP0 40h-5Fh: a line, or a polyline when bit 27 is set (§4).
+    Line,
+    /// GP0 60h-7Fh: rectangle (sprite) (§5).
+    Rectangle,
+    /// GP0 80h-9Fh: VRAM-to-VRAM copy (§8).
+    VramCopy,
+    /// GP0 A0h-BFh: CPU-to-VRAM transfer with its data words (§8).
+    CpuToVram,
+    /// GP0 C0h-DFh: VRAM-to-CPU transfer (§8).
+    VramToCpu,
+    /// GP0 E1h: draw mode (§2).
+    DrawMode,
+    /// GP0 E2h: texture window (§2).
+    TextureWindow,
+    /// GP0 E3h: drawing area top-left (§2).
+    AreaTopLeft,
+    /// GP0 E4h: drawing area bottom-right (§2).
+    AreaBottomRight,
+    /// GP0 E5h: drawing offset (§2).
+    DrawingOffset,
+    /// GP0 E6h: mask bit settings (§2, §6).
+    MaskBits,
+    /// GP0 words that continue a packet begun before (the GPU was not at a packet start).
+    Continuation,
+    /// A GP1 (display control) command (§9).
+    Display,
+}
+
+impl Kind {
+    /// Broad class for filtering: `draw`, `transfer`, `environment`, `display` or `other`.
+    pub fn class(self) -> &'static str {
+        match self {
+            Kind::Polygon | Kind::Line | Kind::Rectangle => "draw",
+            Kind::Fill | Kind::VramCopy | Kind::CpuToVram | Kind::VramToCpu => "transfer",
+            Kind::DrawMode
+            | Kind::TextureWindow
+            | Kind::AreaTopLeft
+            | Kind::AreaBottomRight
+            | Kind::DrawingOffset
+            | Kind::MaskBits => "environment",
+            Kind::Display => "display",
+            Kind::Nop | Kind::ClearCache | Kind::Irq | Kind::Continuation => "other",
+        }
+    }
+}
+
+/// One primitive a command hands the rasterizer, with the rasterizer's verdict.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Primitive {
+    /// A triangle (a quad gives two, gpu.md §3.1).
+    Triangle(Triangle, Coverage),
+    /// A line segment (a polyline gives one per vertex after the first, gpu.md §4).
+    Line(Line, Coverage),
+    /// A rectangle (gpu.md §5).
+    Rectangle(Rectangle, Coverage),
+}
+
+impl Primitive {
+    /// Drawn (with bounds) or dropped (with the reason).
+    pub fn coverage(&self) -> Coverage {
+        match self {
+            Primitive::Triangle(_, c) | Primitive::Line(_, c) | Primitive::Rectangle(_, c) => *c,
+        }
+    }
+
+    /// The outline in drawing coordinates (offset added, before the 11-bit wrap): three
+    /// corners, two endpoints, or a rectangle's four corners (exclusive bottom-right).
+    pub fn outline(&self) -> Vec<(i32, i32)> {
+        match self {
+            Primitive::Triangle(t, _) => t.vertices.iter().map(|v| (v.x, v.y)).collect(),
+            Primitive::Line(l, _) => l.vertices.iter().map(|v| (v.x, v.y)).collect(),
+            Primitive::Rectangle(r, _) => {
+                let (x, y) = (r.origin.x, r.origin.y);
+                let (w, h) = (i32::from(r.width), i32::from(r.height));
+                alloc::vec![(x, y), (x + w, y), (x + w, y + h), (x, y + h)]
+            }
+        }
+    }
+
+    /// The texture the primitive samples, if textured.
+    pub fn texture(&self) -> Option<Texture> {
+        match self {
+            Primitive::Triangle(t, _) => t.texture,
+            Primitive::Line(..) => None,
+            Primitive::Rectangle(r, _) => r.texture,
+        }
+    }
+
+    /// The texture coordinates the primitive spans, as inclusive `(u_min, v_min, u_max,
+    /// v_max)` before the texture window (gpu.md §7): the vertices' range for a triangle;
+    /// for a rectangle the `width` x `height` texels from its origin, the whole 0-255 range
+    /// on an axis where they wrap at 256 (gpu.md §5). `None` when untextured.
+    pub fn uv_bounds(&self) -> Option<(u8, u8, u8, u8)> {
+        self.texture()?;
+        match self {
+            Primitive::Triangle(t, _) => {
+                let us = t.vertices.map(|v| v.u);
+                let vs = t.vertices.map(|v| v.v);
+                let (u0, u1) = (us.iter().min()?, us.iter().max()?);
+                let (v0, v1) = (vs.iter().min()?, vs.iter().max()?);
+                Some((*u0, *v0, *u1, *v1))
+            }
+            Primitive::Rectangle(r, _) => {
+                let span = |start: u8, len: u16, flip: bool| -> (u8, u8) {
+                    let len = u32::from(len).max(1);
+                    if len >= 256 {
+                        return (0, 255);
+                    }
+                    let s = u32::from(start);
+                    let (lo, hi) = if flip {
+                        (s as i64 - (len as i64 - 1), s as i64)
+                    } else {
+                        (s as i64, s as i64 + len as i64 - 1)
+                    };
+                    if lo < 0 || hi > 255 {
+                        (0, 255)
+                    } else {
+                        (lo as u8, hi as u8)
+                    }
+                };
+                let (u0, u1) = span(r.origin.u, r.width, r.flip_x);
+                let (v0, v1) = span(r.origin.v, r.height, r.flip_y);
+                Some((u0, v0, u1, v1))
+            }
+            Primitive::Line(..) => None,
+        }
+    }
+}
+
+/// A named field of a decoded command, as text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Field {
+    /// Field name, e.g. `vertex 0`, `texpage`, `clut`.
+    pub name: &'static str,
+    /// Value as text, e.g. `(10, 20)`, `#ff8000`.
+    pub value: String,
+}
+
+/// A command cut short: the stream ended (or a GP1 write came) before its last word.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Truncation {
+    /// Words the command has.
+    pub have: usize,
+    /// Words it needs; `None` for a polyline that never reached its terminator.
+    pub need: Option<usize>,
+}
+
+/// A decoded command.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Decoded {
+    /// The command's kind.
+    pub kind: Kind,
+    /// Short name, e.g. `GT4 polygon`, `F2 line`, `16x16 sprite`, `draw mode`.
+    pub name: String,
+    /// Fields, in packet order.
+    pub fields: Vec<Field>,
+    /// Primitives handed to the rasterizer, each with its verdict. Empty for a truncated
+    /// polygon, line or rectangle packet (the GPU still waits for its last words).
+    pub primitives: Vec<Primitive>,
+    /// Every VRAM pixel the command may write lies in this rectangle (primitives,
+    /// fills, copies, CPU-to-VRAM transfers); `None` when it writes nothing.
+    pub writes: Option<PixelBounds>,
+    /// The command lacks words.
+    pub truncated: Option<Truncation>,
+}
+
+impl Decoded {
+    fn new(kind: Kind, name: impl Into<String>) -> Self {
+        Self {
+            kind,
+            name: name.into(),
+            fields: Vec::new(),
+            primitives: Vec::new(),
+            writes: None,
+            truncated: None,
+        }
+    }
+
+    fn field(&mut self, name: &'static str, value: String) {
+        self.fields.push(Field { name, value });
+    }
+
+    /// Whether every primitive was dropped (false for commands without primitives).
+    pub fn all_dropped(&self) -> bool {
+        !self.primitives.is_empty()
+            && self
+                .primitives
+                .iter()
+                .all(|p| p.coverage().dropped().is_some())
+    }
+}
+
+/// How many words a GP0 command starting at `words[0]` consumes (gpu.md §2, §8): the
+/// packet, plus a CPU-to-VRAM transfer's data words, plus a polyline's further vertices
+/// and terminator. `Err` carries the count needed (`None` for an unterminated polyline)
+/// when `words` ends first.
+pub fn command_len(words: &[u32]) -> Result<usize, Option<usize>> {
+    let Some(&cmd) = words.first() else {
+        return Err(Some(1));
+    };
+    let len = packet_len(cmd);
+    if words.len() < len {
+        return Err(Some(len));
+    }
+    match cmd >> 24 {
+        0xA0..=0xBF => {
+            let rect = TransferRect::decode(words[1], words[2]);
+            let total = len + (rect.pixels() as usize).div_ceil(2);
+            if words.len() < total {
+                Err(Some(total))
+            } else {
+                Ok(total)
+            }
+        }
+        0x40..=0x5F if cmd & (1 << 27) != 0 => {
+            // Further vertices: (colour,) position; the terminator sits where a vertex's
+            // first word would.
+            let per_vertex = if cmd & (1 << 28) != 0 { 2 } else { 1 };
+            let mut i = len;
+            loop {
+                let &w = words.get(i).ok_or(None)?;
+                if is_terminator(w) {
+                    return Ok(i + 1);
+                }
+                i += per_vertex;
+            }
+        }
+        _ => Ok(len),
+    }
+}
+
+fn hex_color(rgb: [u8; 3]) -> String {
+    format!("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2])
+}
+
+fn blend_name(b: BlendMode) -> &'static str {
+    match b {
+        BlendMode::Average => "0: B/2+F/2",
+        BlendMode::Add => "1: B+F",
+        BlendMode::Subtract => "2: B-F",
+        BlendMode::AddQuarter => "3: B+F/4",
+    }
+}
+
+fn depth_name(d: TextureDepth) -> &'static str {
+    match d {
+        TextureDepth::Clut4 => "4-bit CLUT",
+        TextureDepth::Clut8 => "8-bit CLUT",
+        TextureDepth::Direct15 => "15-bit direct",
+    }
+}
+
+fn vertex_text(v: &Vertex, textured: bool) -> String {
+    if textured {
+        format!("({}, {}) uv ({}, {})", v.x, v.y, v.u, v.v)
+    } else {
+        format!("({}, {})", v.x, v.y)
+    }
+}
+
+fn texture_fields(d: &mut Decoded, t: &Texture) {
+    d.field(
+        "texpage",
+        format!("({}, {}) {}", t.page_x, t.page_y, depth_name(t.depth)),
+    );
+    if t.depth != TextureDepth::Direct15 {
+        d.field("clut", format!("({}, {})", t.clut_x, t.clut_y));
+    }
+    if t.raw {
+        d.field("raw texture", "yes (unmodulated)".into());
+    }
+}
+
+fn flags_text(items: &[(bool, &str)]) -> String {
+    let mut s = String::new();
+    for (on, name) in items {
+        if *on {
+            if !s.is_empty() {
+                s.push_str(", ");
+            }
+            s.push_str(name);
+        }
+    }
+    if s.is_empty() {
+        s.push('-');
+    }
+    s
+}
+
+/// A VRAM rectangle that may wrap at the edges, as the bounds of all pixels it touches.
+fn wrapped_bounds(x: usize, y: usize, w: usize, h: usize) -> Option<PixelBounds> {
+    if w == 0 || h == 0 {
+        return None;
+    }
+    let (left, right) = if x + w > VRAM_WIDTH {
+        (0, VRAM_WIDTH - 1)
+    } else {
+        (x, x + w - 1)
+    };
+    let (top, bottom) = if y + h > VRAM_HEIGHT {
+        (0, VRAM_HEIGHT - 1)
+    } else {
+        (y, y + h - 1)
+    };
+    Some(PixelBounds {
+        left: left as u16,
+        top: top as u16,
+        right: right as u16,
+        bottom: bottom as u16,
+    })
+}
+
+fn union(a: Option<PixelBounds>, b: PixelBounds) -> PixelBounds {
+    match a {
+        None => b,
+        Some(a) => PixelBounds {
+            left: a.left.min(b.left),
+            top: a.top.min(b.top),
+            right: a.right.max(b.right),
+            bottom: a.bottom.max(b.bottom),
+        },
+    }
+}
+
+impl Decoded {
+    fn push_primitive(&mut self, p: Primitive) {
+        if let Coverage::Drawn(b) = p.coverage() {
+            self.writes = Some(union(self.writes, b));
+        }
+        self.primitives.push(p);
+    }
+}
+
+fn transfer_fields(d: &mut Decoded, label: &'static str, r: &TransferRect) {
+    d.field(label, format!("({}, {})", r.x, r.y));
+    d.field("size", format!("{}x{}", r.w, r.h));
+}
+
+impl Gpu {
+    /// The GPU is at a GP0 packet boundary: no packet, polyline or CPU-to-VRAM transfer is
+    /// in progress, so the next GP0 word starts a command.
+    pub fn gp0_idle(&self) -> bool {
+        self.gp0.idle()
+    }
+
+    /// Decode a GP0 command starting at `words[0]` against the current drawing state,
+    /// as [`Gpu::gp0`] would execute it now. `words` may hold the whole command (see
+    /// [`command_len`]) or fewer words (the result is then marked truncated). Only
+    /// meaningful when [`Gpu::gp0_idle`].
+    pub fn decode_gp0(&self, words: &[u32]) -> Decoded {
+        decode_gp0(words, &self.draw, self.texture_disable_allowed)
+    }
+
+    /// Decode a GP1 command (gpu.md §9).
+    pub fn decode_gp1(&self, word: u32) -> Decoded {
+        decode_gp1(word)
+    }
+}
+
+fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) -> Decoded {
+    let cmd = words.first().copied().unwrap_or(0);
+    let op = cmd >> 24;
+    let len = packet_len(cmd);
+    let mut packet = [0u32; MAX_PACKET];
+    for (slot, w) in packet.iter_mut().zip(words) {
+        *slot = *w;
+    }
+    let complete = words.len() >= len;
+    let mut d = match op {
+        0x01 => Decoded::new(Kind::ClearCache, "clear cache"),
+        0x02 => {
+            let mut d = Decoded::new(Kind::Fill, "fill");
+            let (pos, size) = (packet[1], packet[2]);
+            // gpu.md §8: x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh.
+            let x = (pos & 0x3F0) as usize;
+            let y = ((pos >> 16) & 0x1FF) as usize;
+            let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
+            let h = ((size >> 16) & 0x1FF) as usize;
+            d.field("color", hex_color(crate::color::unpack888(cmd)));
+            d.field("position", format!("({x}, {y})"));
+            d.field("size", format!("{w}x{h}"));
+            if complete {
+                d.writes = wrapped_bounds(x, y, w, h);
+            }
+            d
+        }
+        0x1F => Decoded::new(Kind::Irq, "IRQ"),
+        0x20..=0x3F => polygon(&packet, draw, texture_disable_allowed, complete),
+        0x40..=0x5F => line(words, &packet, draw, complete),
+        0x60..=0x7F => rectangle(&packet, draw, texture_disable_allowed, complete),
+        0x80..=0x9F => {
+            let mut d = Decoded::new(Kind::VramCopy, "VRAM copy");
+            let src = TransferRect::decode(packet[1], packet[3]);
+            let dst = TransferRect::decode(packet[2], packet[3]);
+            d.field("source", format!("({}, {})", src.x, src.y));
+            transfer_fields(&mut d, "destination", &dst);
+            if complete {
+                d.writes = wrapped_bounds(dst.x.into(), dst.y.into(), dst.w.into(), dst.h.into());
+            }
+            d
+        }
+        0xA0..=0xBF => {
+            let mut d = Decoded::new(Kind::CpuToVram, "CPU to VRAM");
+            let r = TransferRect::decode(packet[1], packet[2]);
+            transfer_fields(&mut d, "destination", &r);
+            let data = (r.pixels() as usize).div_ceil(2);
+            d.field("data words", format!("{data}"));
+            if complete {
+                // Data words already received are written even if the rest never comes.
+                let got = words.len().saturating_sub(len).min(data) * 2;
+                let rows = got.div_ceil(r.w.into()).min(r.h.into());
+                d.writes = wrapped_bounds(r.x.into(), r.y.into(), r.w.into(), rows);
+                if words.len() < len + data {
+                    d.truncated = Some(Truncation {
+                        have: words.len(),
+                        need: Some(len + data),
+                    });
+                }
+            }
+            d
+        }
+        0xC0..=0xDF => {
+            let mut d = Decoded::new(Kind::VramToCpu, "VRAM to CPU");
+            let r = TransferRect::decode(packet[1], packet[2]);
+            transfer_fields(&mut d, "source", &r);
+            d
+        }
+        0xE1..=0xE6 => environment(cmd, draw, texture_disable_allowed),
+        _ => Decoded::new(Kind::Nop, "NOP"),
+    };
+    if !complete && d.truncated.is_none() {
+        d.truncated = Some(Truncation {
+            have: words.len(),
+            need: Some(len),
+        });
+    }
+    d
+}
+
+fn polygon(
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    texture_disable_allowed: bool,
+    complete: bool,
+) -> Decoded {
+    let cmd = p[0];
+    let packet = polygon_packet(p, draw, texture_disable_allowed);
+    let quad = cmd & (1 << 27) != 0;
+    let gouraud = cmd & (1 << 28) != 0;
+    let name = format!(
+        "{}{}{} polygon",
+        if gouraud { "G" } else { "F" },
+        if packet.has_uv { "T" } else { "" },
+        if quad { 4 } else { 3 }
+    );
+    let mut d = Decoded::new(Kind::Polygon, name);
+    let tri = &packet.first;
+    let mut verts: Vec<Vertex> = tri.vertices.to_vec();
+    if let Some(second) = &packet.second {
+        verts.push(second.vertices[2]);
+    }
+    const NAMES: [&str; 4] = ["vertex 0", "vertex 1", "vertex 2", "vertex 3"];
+    const COLORS: [&str; 4] = ["color 0", "color 1", "color 2", "color 3"];
+    for (i, v) in verts.iter().enumerate() {
+        if i == 0 || gouraud {
+            d.field(COLORS[i & 3], hex_color(v.color));
+        }
+        d.field(NAMES[i & 3], vertex_text(v, packet.has_uv));
+    }
+    if let Some(t) = &tri.texture {
+        texture_fields(&mut d, t);
+    } else if packet.has_uv {
+        d.field("texture", "disabled (E1.11)".into());
+    }
+    if let Some(b) = tri.blend {
+        d.field("blend", blend_name(b).into());
+    }
+    d.field(
+        "flags",
+        flags_text(&[
+            (gouraud, "Gouraud"),
+            (tri.texture.is_some(), "textured"),
+            (tri.blend.is_some(), "semi-transparent"),
+            (tri.dither, "dithered"),
+            (draw.mask.set, "mask set"),
+            (draw.mask.check, "mask check"),
+        ]),
+    );
+    if complete {
+        d.push_primitive(Primitive::Triangle(
+            *tri,
+            classify_triangle(tri, &draw.area),
+        ));
+        if let Some(second) = &packet.second {
+            d.push_primitive(Primitive::Triangle(
+                *second,
+                classify_triangle(second, &draw.area),
+            ));
+        }
+    }
+    d
+}
+
+fn line(words: &[u32], p: &[u32; MAX_PACKET], draw: &DrawState, complete: bool) -> Decoded {
+    let cmd = p[0];
+    let gouraud = cmd & (1 << 28) != 0;
+    let poly = cmd & (1 << 27) != 0;
+    let first = line_packet(p, draw);
+    let name = format!(
+        "{}{}",
+        if gouraud { "G" } else { "F" },
+        if poly { " polyline" } else { "2 line" }
+    );
+    let mut d = Decoded::new(Kind::Line, name);
+    d.field("color 0", hex_color(first.vertices[0].color));
+    d.field("vertex 0", vertex_text(&first.vertices[0], false));
+    if gouraud {
+        d.field("color 1", hex_color(first.vertices[1].color));
+    }
+    d.field("vertex 1", vertex_text(&first.vertices[1], false));
+    if let Some(b) = first.blend {
+        d.field("blend", blend_name(b).into());
+    }
+    d.field(
+        "flags",
+        flags_text(&[
+            (gouraud, "Gouraud"),
+            (first.blend.is_some(), "semi-transparent"),
+            (first.dither, "dithered"),
+            (draw.mask.set, "mask set"),
+            (draw.mask.check, "mask check"),
+        ]),
+    );
+    if !complete {
+        return d;
+    }
+    d.push_primitive(Primitive::Line(first, classify_line(&first, &draw.area)));
+    if poly {
+        let mut state = Polyline::new(first);
+        let mut terminated = false;
+        for &w in words.iter().skip(packet_len(cmd)) {
+            match state.step(draw, w) {
+                PolylineStep::End => {
+                    terminated = true;
+                    break;
+                }
+                PolylineStep::Color(s) => state = s,
+                PolylineStep::Segment(s) => {
+                    state = s;
+                    d.push_primitive(Primitive::Line(s.line, classify_line(&s.line, &draw.area)));
+                }
+            }
+        }
+        d.field("segments", format!("{}", d.primitives.len()));
+        if !terminated {
+            d.truncated = Some(Truncation {
+                have: words.len(),
+                need: None,
+            });
+        }
+    }
+    d
+}
+
+fn rectangle(
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    texture_disable_allowed: bool,
+    complete: bool,
+) -> Decoded {
+    let cmd = p[0];
+    let rect = rectangle_packet(p, draw, texture_disable_allowed);
+    let size = match (cmd >> 27) & 3 {
+        0 => "variable",
+        1 => "1x1",
+        2 => "8x8",
+        _ => "16x16",
+    };
+    let textured = cmd & (1 << 26) != 0;
+    let name = format!("{size}{} sprite", if textured { " textured" } else { "" });
+    let mut d = Decoded::new(Kind::Rectangle, name);
+    d.field("color", hex_color(rect.origin.color));
+    d.field("position", vertex_text(&rect.origin, textured));
+    d.field("size", format!("{}x{}", rect.width, rect.height));
+    if let Some(t) = &rect.texture {
+        texture_fields(&mut d, t);
+    } else if textured {
+        d.field("texture", "disabled (E1.11)".into());
+    }
+    if let Some(b) = rect.blend {
+        d.field("blend", blend_name(b).into());
+    }
+    d.field(
+        "flags",
+        flags_text(&[
+            (rect.texture.is_some(), "textured"),
+            (rect.blend.is_some(), "semi-transparent"),
+            (rect.texture.is_some() && rect.flip_x, "flip X"),
+            (rect.texture.is_some() && rect.flip_y, "flip Y"),
+            (draw.mask.set, "mask set"),
+            (draw.mask.check, "mask check"),
+        ]),
+    );
+    if complete {
+        d.push_primitive(Primitive::Rectangle(
+            rect,
+            classify_rectangle(&rect, &draw.area),
+        ));
+    }
+    d
+}
+
+fn environment(cmd: u32, draw: &DrawState, texture_disable_allowed: bool) -> Decoded {
+    let mut after = *draw;
+    gp0::apply_environment(&mut after, cmd, texture_disable_allowed);
+    let yes_no = |b: bool| if b { "on" } else { "off" }.into();
+    match cmd >> 24 {
+        0xE1 => {
+            let m = after.mode;
+            let mut d = Decoded::new(Kind::DrawMode, "draw mode");
+            d.field(
+                "texpage",
+                format!("({}, {}) {}", m.page_x, m.page_y, depth_name(m.depth)),
+            );
+            d.field("blend", blend_name(m.blend).into());
+            d.field("dither", yes_no(m.dither));
+            d.field("draw to display", yes_no(m.draw_to_display));
+            d.field("texture disable", yes_no(m.texture_disable));
+            d.field("flip X", yes_no(m.flip_x));
+            d.field("flip Y", yes_no(m.flip_y));
+            d
+        }
+        0xE2 => {
+            let w = after.window;
+            let mut d = Decoded::new(Kind::TextureWindow, "texture window");
+            d.field("mask", format!("({}, {}) x8", w.mask_x, w.mask_y));
+            d.field("offset", format!("({}, {}) x8", w.offset_x, w.offset_y));
+            d
+        }
+        0xE3 => {
+            let mut d = Decoded::new(Kind::AreaTopLeft, "drawing area top-left");
+            d.field(
+                "top-left",
+                format!("({}, {})", after.area.left, after.area.top),
+            );
+            d
+        }
+        0xE4 => {
+            let mut d = Decoded::new(Kind::AreaBottomRight, "drawing area bottom-right");
+            d.field(
+                "bottom-right",
+                format!("({}, {})", after.area.right, after.area.bottom),
+            );
+            d
+        }
+        0xE5 => {
+            let mut d = Decoded::new(Kind::DrawingOffset, "drawing offset");
+            d.field(
+                "offset",
+                format!("({}, {})", after.offset_x, after.offset_y),
+            );
+            d
+        }
+        _ => {
+            let mut d = Decoded::new(Kind::MaskBits, "mask bits");
+            d.field("set bit 15", yes_no(after.mask.set));
+            d.field("skip masked", yes_no(after.mask.check));
+            d
+        }
+    }
+}
+
+fn decode_gp1(word: u32) -> Decoded {
+    let op = word >> 24;
+    let name = match op {
+        0x00 => "reset",
+        0x01 => "reset command buffer",
+        0x02 => "acknowledge IRQ",
+        0x03 => "display enable",
+        0x04 => "DMA direction",
+        0x05 => "display start",
+        0x06 => "horizontal display range",
+        0x07 => "vertical display range",
+        0x08 => "display mode",
+        0x09 => "allow texture disable",
+        0x10..=0x1F => "get GPU info",
+        _ => "unused GP1",
+    };
+    let mut d = Decoded::new(Kind::Display, format!("GP1 {name}"));
+    // Field layouts: gpu.md §9 (psx-spx "GPU Display Control Commands").
+    match op {
+        0x03 => d.field("display", if word & 1 != 0 { "off" } else { "on" }.into()),
+        0x04 => d.field("direction", format!("{}", word & 3)),
+        0x05 => d.field(
+            "start",
+            format!("({}, {})", word & 0x3FF, (word >> 10) & 0x1FF),
+        ),
+        0x06 => d.field(
+            "x1..x2",
+            format!("{}..{}", word & 0xFFF, (word >> 12) & 0xFFF),
+        ),
+        0x07 => d.field(
+            "y1..y2",
+            format!("{}..{}", word & 0x3FF, (word >> 10) & 0x3FF),
+        ),
+        0x08 => d.field("mode bits", format!("{:02x}h", word & 0xFF)),
+        0x09 => d.field("allowed", format!("{}", word & 1)),
+        0x10..=0x1F => d.field("register", format!("{}", word & 7)),
+        _ => {}
+    }
+    d
+}
+
+/// Whether `words` (non-empty, grown one word at a time) hold a whole command: the test
+/// [`command_len`] makes, in constant time for the last word.
+fn complete(words: &[u32]) -> bool {
+    let (Some(&cmd), n) = (words.first(), words.len()) else {
+        return false;
+    };
+    let len = packet_len(cmd);
+    if n < len {
+        return false;
+    }
+    match cmd >> 24 {
+        0xA0..=0xBF => {
+            let rect = TransferRect::decode(words[1], words[2]);
+            n >= len + (rect.pixels() as usize).div_ceil(2)
+        }
+        0x40..=0x5F if cmd & (1 << 27) != 0 => {
+            let per_vertex = if cmd & (1 << 28) != 0 { 2 } else { 1 };
+            n > len
+                && (n - 1 - len).is_multiple_of(per_vertex)
+                && words.last().is_some_and(|&w| is_terminator(w))
+        }
+        _ => true,
+    }
+}
+
+/// One command of a stream as the GPU receives it: its words (possibly spread over
+/// several stream lines) and their decoding.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TracedCommand {
+    /// Stream line of the first word (1-based).
+    pub line: usize,
+    /// Stream line of the last word.
+    pub last_line: usize,
+    /// Port written.
+    pub port: Port,
+    /// The words, in order.
+    pub words: Vec<u32>,
+    /// Their decoding against the state the GPU had before them.
+    pub decoded: Decoded,
+}
+
+/// Splits a parsed command stream into GPU commands, one at a time, each decoded against
+/// the GPU's state just before it. Run each command's words yourself (or with
+/// [`Tracer::execute`]) before asking for the next, so decoding sees the state it needs.
+#[derive(Clone, Debug)]
+pub struct Tracer<'a> {
+    commands: &'a [StreamCommand],
+    line: usize,
+    word: usize,
+}
+
+impl<'a> Tracer<'a> {
+    /// Start at the first word of `commands`.
+    pub fn new(commands: &'a [StreamCommand]) -> Self {
+        Self {
+            commands,
+            line: 0,
+            word: 0,
+        }
+    }
+
+    /// Send a traced command's words to the GPU.
+    pub fn execute(gpu: &mut Gpu, command: &TracedCommand) {
+        match command.port {
+            Port::Gp0 => gpu.gp0_words(&command.words),
+            Port::Gp1 => {
+                for &w in &command.words {
+                    gpu.gp1(w);
+                }
+            }
+        }
+    }
+
+    /// The next command, decoded against `gpu` as it is now; `None` at the end. A GP0
+    /// command ends at its last word or where a GP1 line interrupts it (then it is marked
+    /// truncated); words arriving while the GPU is mid-packet are a
+    /// [`Kind::Continuation`].
+    pub fn next_command(&mut self, gpu: &Gpu) -> Option<TracedCommand> {
+        let first = self.commands.get(self.line)?;
+        let start_line = first.line;
+        if first.port == Port::Gp1 {
+            let word = first.words.get(self.word).copied().unwrap_or(0);
+            self.advance(1);
+            return Some(TracedCommand {
+                line: start_line,
+                last_line: start_line,
+                port: Port::Gp1,
+                words: alloc::vec![word],
+                decoded: gpu.decode_gp1(word),
+            });
+        }
+        if !gpu.gp0_idle() {
+            let words: Vec<u32> = first.words.get(self.word..).unwrap_or(&[]).to_vec();
+            self.line += 1;
+            self.word = 0;
+            let mut decoded = Decoded::new(Kind::Continuation, "continuation");
+            decoded.field("words", format!("{}", words.len()));
+            return Some(TracedCommand {
+                line: start_line,
+                last_line: start_line,
+                port: Port::Gp0,
+                words,
+                decoded,
+            });
+        }
+        // Gather words across GP0 lines until the command is complete.
+        let mut words = Vec::new();
+        let mut last_line = start_line;
+        while let Some(c) = self.commands.get(self.line) {
+            if c.port != Port::Gp0 {
+                break;
+            }
+            let rest = c.words.get(self.word..).unwrap_or(&[]);
+            let mut taken = 0;
+            let mut done = false;
+            for &w in rest {
+                words.push(w);
+                taken += 1;
+                if complete(&words) {
+                    done = true;
+                    break;
+                }
+            }
+            last_line = c.line;
+            self.advance(taken.max(1));
+            if done {
+                break;
+            }
+        }
+        let decoded = gpu.decode_gp0(&words);
+        Some(TracedCommand {
+            line: start_line,
+            last_line,
+            port: Port::Gp0,
+            words,
+            decoded,
+        })
+    }
+
+    fn advance(&mut self, taken: usize) {
+        self.word += taken;
+        let len = self.commands.get(self.line).map_or(0, |c| c.words.len());
+        if self.word >= len {
+            self.line += 1;
+            self.word = 0;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::command_stream::parse;
+    use crate::rasterizer::DropReason;
+
+    fn gpu_with_area() -> Gpu {
+        let mut gpu = Gpu::new();
+        gpu.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
+        gpu
+    }
+
+    #[test]
+    fn command_lengths_follow_the_word_counts_of_section_2() {
+        // F3=4, F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 (gpu.md §2).
+        for (op, n) in [
+            (0x20, 4),
+            (0x28, 5),
+            (0x30, 6),
+            (0x38, 8),
+            (0x24, 7),
+            (0x2C, 9),
+            (0x34, 9),
+            (0x3C, 12),
+        ] {
+            let words = [op << 24; 12];
+            assert_eq!(command_len(&words), Ok(n), "op {op:02x}");
+        }
+        // A0h 3x1: 3 pixels -> 2 data words.
+        assert_eq!(command_len(&[0xA000_0000, 0, 0x0001_0003, 0, 0]), Ok(5));
+        assert_eq!(command_len(&[0xA000_0000, 0, 0x0001_0003, 0]), Err(Some(5)));
+        // Flat polyline: two vertices, one more, terminator.
+        let poly = [0x4800_0000, 0, 0x0001_0001, 0x0002_0002, 0x5555_5555];
+        assert_eq!(command_len(&poly), Ok(5));
+        assert_eq!(command_len(&poly[..4]), Err(None));
+        // Gouraud polyline: the terminator is tested at the colour word's place only, so
+        // a position word with the pattern does not end it.
+        let g = [0x5800_0000, 0, 0, 1, 0x00FF_0000, 0x5000_5000, 0x5555_5555];
+        assert_eq!(command_len(&g), Ok(7));
+    }
+
+    #[test]
+    fn polygon_fields_are_after_the_drawing_offset() {
+        let mut gpu = gpu_with_area();
+        gpu.gp0(0xE500_0000 | 5 | (7 << 11));
+        let d = gpu.decode_gp0(&[0x2000_00FF, 0x0002_0001, 0x0000_0040, 0x0040_0000]);
+        assert_eq!(d.name, "F3 polygon");
+        let v0 = d.fields.iter().find(|f| f.name == "vertex 0").unwrap();
+        assert_eq!(v0.value, "(6, 9)");
+        assert_eq!(d.fields[0].value, "#ff0000");
+        match d.primitives[0].coverage() {
+            Coverage::Drawn(b) => assert_eq!((b.left, b.top, b.right, b.bottom), (5, 7, 69, 71)),
+            c => panic!("{c:?}"),
+        }
+    }
+
+    #[test]
+    fn drop_reasons() {
+        let gpu = gpu_with_area();
+        // 1024 wide: size limit (gpu.md §3.2).
+        let d = gpu.decode_gp0(&[0x2000_0000, 0, 0x0000_0400, 0x0010_0000]);
+        assert_eq!(
+            d.primitives[0].coverage(),
+            Coverage::Dropped(DropReason::SizeLimit)
+        );
+        // Collinear.
+        let d = gpu.decode_gp0(&[0x2000_0000, 0, 0x0001_0001, 0x0002_0002]);
+        assert_eq!(
+            d.primitives[0].coverage(),
+            Coverage::Dropped(DropReason::ZeroArea)
+        );
+        // Outside a 16x16 area.
+        let mut small = Gpu::new();
+        small.gp0_words(&[0xE300_0000, 0xE400_3C0F]);
+        let d = small.decode_gp0(&[0x2000_0000, 0x0020_0020, 0x0020_0030, 0x0030_0020]);
+        assert_eq!(
+            d.primitives[0].coverage(),
+            Coverage::Dropped(DropReason::Clipped)
+        );
+        // Zero-size sprite.
+        let d = gpu.decode_gp0(&[0x6000_0000, 0, 0]);
+        assert_eq!(
+            d.primitives[0].coverage(),
+            Coverage::Dropped(DropReason::ZeroArea)
+        );
+        // A line 1024 wide.
+        let d = gpu.decode_gp0(&[0x4000_0000, 0, 0x0000_0400]);
+        assert_eq!(
+            d.primitives[0].coverage(),
+            Coverage::Dropped(DropReason::SizeLimit)
+        );
+    }
+
+    #[test]
+    fn dropped_primitives_write_nothing_and_drawn_ones_stay_in_bounds() {
+        // Every pixel a command changes lies in `writes`; a command whose primitives are
+        // all dropped changes none.
+        let cases: [&[u32]; 6] = [
+            &[0x2000_FFFF, 0, 0x0000_0400, 0x0010_0000],
+            &[0x2000_FFFF, 0x0005_0003, 0x0000_0040, 0x0040_0000],
+            &[
+                0x3800_FFFF,
+                0x0010_0010,
+                0xFF,
+                0x0010_0050,
+                0xFF00,
+                0x0050_0010,
+                0xFF,
+                0x0050_0050,
+            ],
+            &[0x4000_FFFF, 0x0003_0002, 0x0020_0100],
+            &[0x6000_FFFF, 0x0010_0008, 0x0005_0007],
+            &[0x0200_FFFF, 0x0010_03F8, 0x0008_0020],
+        ];
+        for words in cases {
+            let mut gpu = gpu_with_area();
+            let d = gpu.decode_gp0(words);
+            let before = gpu.vram().clone();
+            gpu.gp0_words(words);
+            let mut changed = 0;
+            for y in 0..VRAM_HEIGHT {
+                for x in 0..VRAM_WIDTH {
+                    if before.pixel(x, y) != gpu.vram().pixel(x, y) {
+                        changed += 1;
+                        let b = d.writes.expect("writes");
+                        assert!(
+                            (b.left as usize..=b.right as usize).contains(&x)
+                                && (b.top as usize..=b.bottom as usize).contains(&y),
+                            "{words:x?}: ({x}, {y}) outside {b:?}"
+                        );
+                    }
+                }
+            }
+            assert_eq!(
+                changed == 0,
+                d.writes.is_none() || d.all_dropped(),
+                "{words:x?}"
+            );
+        }
+    }
+
+    #[test]
+    fn tracer_groups_words_split_over_lines() {
+        let text = "gp1 00000000\ngp0 e3000000\ngp0 e407ffff\ngp0 02ff0000\ngp0 00000000\n\
+                    gp0 00100010\ngp0 48ffffff 0 00100010\ngp0 00200000 55555555 e5000000\n\
+                    gp0 20000000 0";
+        let cmds = parse(text).unwrap();
+        let mut gpu = Gpu::new();
+        let mut tracer = Tracer::new(&cmds);
+        let mut got = Vec::new();
+        while let Some(c) = tracer.next_command(&gpu) {
+            Tracer::execute(&mut gpu, &c);
+            got.push((
+                c.line,
+                c.last_line,
+                c.decoded.kind,
+                c.words.len(),
+                c.decoded.truncated,
+            ));
+        }
+        assert_eq!(
+            got,
+            [
+                (1, 1, Kind::Display, 1, None),
+                (2, 2, Kind::AreaTopLeft, 1, None),
+                (3, 3, Kind::AreaBottomRight, 1, None),
+                (4, 6, Kind::Fill, 3, None),
+                (7, 8, Kind::Line, 5, None),
+                (8, 8, Kind::DrawingOffset, 1, None),
+                (
+                    9,
+                    9,
+                    Kind::Polygon,
+                    2,
+                    Some(Truncation {
+                        have: 2,
+                        need: Some(4)
+                    })
+                ),
+            ]
+        );
+    }
+}

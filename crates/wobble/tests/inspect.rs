@@ -1,0 +1,390 @@
+//! `wobble inspect` on the hardware fixture streams and on bad input: the report lists every
+//! command, its pixel counts add up with the final VRAM, and the last-writer map agrees with
+//! an independent per-line VRAM comparison.
+
+// Pixel loops index several parallel per-pixel tables by the same index.
+#![allow(clippy::needless_range_loop)]
+
+use gpu::command_stream::{self, Port};
+use gpu::{Gpu, VRAM_LEN};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use wobble::inspect::{InspectOptions, InspectSummary, write_report};
+
+fn fixture(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../fixtures/gpu")
+        .join(name)
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("wobble-inspect-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// All rows of a report, read back from its chunk files.
+fn rows(dir: &Path) -> Vec<Value> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir.join("data"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.file_name()
+                .is_some_and(|n| n.to_string_lossy().starts_with("chunk-"))
+        })
+        .collect();
+    files.sort();
+    let mut all = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let start = text.find(",[").unwrap() + 1;
+        let end = text.rfind(");").unwrap();
+        let chunk: Vec<Value> = serde_json::from_str(&text[start..end]).unwrap();
+        all.extend(chunk);
+    }
+    all
+}
+
+fn report(text: &str, name: &str) -> (InspectSummary, Vec<Value>, PathBuf) {
+    let commands = command_stream::parse(text).unwrap();
+    let dir = out_dir(name);
+    let mut gpu = Gpu::new();
+    let summary = write_report(
+        &mut gpu,
+        &commands,
+        &dir,
+        name,
+        InspectOptions::default(),
+        None,
+        None,
+    )
+    .unwrap();
+    let rows = rows(&dir);
+    (summary, rows, dir)
+}
+
+/// The report covers every stream line and every word, in order.
+fn check_lists_every_command(text: &str, rows: &[Value]) {
+    let commands = command_stream::parse(text).unwrap();
+    let words: usize = commands.iter().map(|c| c.words.len()).sum();
+    let listed: usize = rows
+        .iter()
+        .map(|r| r["nwords"].as_u64().unwrap() as usize)
+        .sum();
+    assert_eq!(listed, words, "every word is in some row");
+    for (i, r) in rows.iter().enumerate() {
+        assert_eq!(r["i"].as_u64().unwrap() as usize, i);
+    }
+    for c in &commands {
+        assert!(
+            rows.iter().any(|r| {
+                let (a, b) = (r["line"].as_u64().unwrap(), r["last"].as_u64().unwrap());
+                (a..=b).contains(&(c.line as u64))
+            }),
+            "line {} is in a row",
+            c.line
+        );
+    }
+}
+
+/// Pixel accounting: the final VRAM equals a plain replay; a pixel without a writer kept its
+/// initial value; a pixel's writer changed something; the changes add up.
+fn check_pixel_accounting(text: &str, s: &InspectSummary) {
+    let commands = command_stream::parse(text).unwrap();
+    let mut plain = Gpu::new();
+    command_stream::run(&mut plain, &commands);
+    assert!(
+        s.final_vram == plain.vram().as_slice(),
+        "report's final VRAM equals a plain replay"
+    );
+    let mut differing = 0u64;
+    let mut written = 0u64;
+    for i in 0..VRAM_LEN {
+        let w = s.writers[i];
+        if s.final_vram[i] != s.initial[i] {
+            differing += 1;
+            assert!(w != 0, "pixel {i} changed but has no last writer");
+        }
+        if w == 0 {
+            assert_eq!(
+                s.final_vram[i], s.initial[i],
+                "pixel {i} has no writer but changed"
+            );
+        } else {
+            written += 1;
+            assert!(
+                s.changed[(w - 1) as usize] > 0,
+                "writer of pixel {i} changed nothing"
+            );
+        }
+    }
+    let total: u64 = s.changed.iter().sum();
+    assert!(
+        total >= written,
+        "{total} changes cover the {written} written pixels"
+    );
+    assert!(written >= differing);
+    // Each command's count is at least the pixels it is the last writer of.
+    let mut last_of = vec![0u64; s.changed.len()];
+    for &w in &s.writers {
+        if w != 0 {
+            last_of[(w - 1) as usize] += 1;
+        }
+    }
+    for (i, (&c, &l)) in s.changed.iter().zip(&last_of).enumerate() {
+        assert!(c >= l, "command {i}: changed {c} < last writer of {l}");
+    }
+}
+
+/// An independent check by stream line: run the stream a line at a time comparing the
+/// whole VRAM after each line; the last line that changed a pixel must lie in the line
+/// range of the row the report names as its last writer, and a row whose command is exactly
+/// one line must count exactly the pixels that line changed.
+fn check_against_line_by_line(text: &str, rows: &[Value], s: &InspectSummary) {
+    let commands = command_stream::parse(text).unwrap();
+    let mut gpu = Gpu::new();
+    let mut last_line = vec![0usize; VRAM_LEN];
+    let mut changed_by_line = std::collections::HashMap::new();
+    for c in &commands {
+        let before = gpu.vram().as_slice().to_vec();
+        match c.port {
+            Port::Gp0 => gpu.gp0_words(&c.words),
+            Port::Gp1 => c.words.iter().for_each(|&w| gpu.gp1(w)),
+        }
+        let mut n = 0u64;
+        for (i, (a, b)) in before.iter().zip(gpu.vram().as_slice()).enumerate() {
+            if a != b {
+                last_line[i] = c.line;
+                n += 1;
+            }
+        }
+        changed_by_line.insert(c.line, (n, c.words.len()));
+    }
+    for i in 0..VRAM_LEN {
+        let w = s.writers[i];
+        if last_line[i] == 0 {
+            assert_eq!(w, 0, "pixel {i}");
+            continue;
+        }
+        assert!(w != 0, "pixel {i} last changed at line {}", last_line[i]);
+        let r = &rows[(w - 1) as usize];
+        let (a, b) = (
+            r["line"].as_u64().unwrap() as usize,
+            r["last"].as_u64().unwrap() as usize,
+        );
+        assert!(
+            (a..=b).contains(&last_line[i]),
+            "pixel {i}: line {} vs row lines {a}-{b}",
+            last_line[i]
+        );
+    }
+    let mut exact = 0;
+    for r in rows {
+        let line = r["line"].as_u64().unwrap() as usize;
+        if r["last"].as_u64().unwrap() as usize == line
+            && let Some(&(n, words)) = changed_by_line.get(&line)
+            && words == r["nwords"].as_u64().unwrap() as usize
+        {
+            assert_eq!(r["changed"].as_u64().unwrap(), n, "line {line}");
+            exact += 1;
+        }
+    }
+    assert!(exact > 0);
+}
+
+#[test]
+fn hardware_fixtures_small() {
+    for name in ["quad.gpu", "triangle.gpu", "transparency.gpu", "lines.gpu"] {
+        let text = std::fs::read_to_string(fixture(name)).unwrap();
+        let (s, rows, dir) = report(&text, name);
+        assert_eq!(rows.len(), s.commands);
+        check_lists_every_command(&text, &rows);
+        check_pixel_accounting(&text, &s);
+        check_against_line_by_line(&text, &rows, &s);
+        assert!(dir.join("index.html").is_file());
+        assert!(dir.join("img/final.png").is_file());
+        assert!(s.draws > 0 && s.images > 0, "{name}");
+        // Every image a row names exists.
+        for r in &rows {
+            if let Some(png) = r["img"]["png"].as_str() {
+                assert!(dir.join(png).is_file(), "{png}");
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+#[test]
+fn hardware_fixtures_large() {
+    for name in ["rectangles.gpu", "texture-overflow.gpu"] {
+        let text = std::fs::read_to_string(fixture(name)).unwrap();
+        let (s, rows, dir) = report(&text, name);
+        check_lists_every_command(&text, &rows);
+        check_pixel_accounting(&text, &s);
+        if name == "texture-overflow.gpu" {
+            // Textured draws carry a texture-page view and their UV rectangle.
+            let textured: Vec<&Value> = rows.iter().filter(|r| !r["tex"].is_null()).collect();
+            assert!(!textured.is_empty());
+            for r in textured {
+                let png = r["tex"]["png"].as_str().unwrap();
+                assert!(dir.join(png).is_file());
+                assert_eq!(r["tex"]["uv"].as_array().unwrap().len(), 4);
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+#[test]
+fn drop_reasons_are_reported() {
+    // Drawing area 0,0-1023,511, then: a triangle 1024 wide (size limit), a collinear one
+    // (zero area), and with a 16x16 area one outside it (clipped away).
+    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
+                gp0 2000ffff 00000000 00000400 00100000\n\
+                gp0 2000ffff 00000000 00010001 00020002\n\
+                gp0 e4003c0f\n\
+                gp0 2000ffff 00200020 00200030 00300020\n\
+                gp0 2000ffff 00000000 00000008 00080000\n";
+    let (s, rows, dir) = report(text, "drops");
+    let fate = |i: usize| rows[i]["prims"][0]["fate"].as_str().map(str::to_string);
+    assert!(fate(3).unwrap().starts_with("size limit"));
+    assert_eq!(fate(4).unwrap(), "zero area");
+    assert!(fate(6).unwrap().starts_with("clipped"));
+    assert_eq!(fate(7), None);
+    assert_eq!(s.dropped, 3);
+    assert_eq!(s.changed[3] + s.changed[4] + s.changed[6], 0);
+    assert!(s.changed[7] > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn truncated_stream_gives_a_report_with_the_cut_command_marked() {
+    let text = std::fs::read_to_string(fixture("quad.gpu")).unwrap();
+    // Cut inside the last polygon packet.
+    let lines: Vec<&str> = text.lines().collect();
+    let cut = lines[..lines.len() - 2].join("\n");
+    let (s, rows, dir) = report(&cut, "truncated");
+    let last = rows.last().unwrap();
+    assert!(last["truncated"].as_str().unwrap().starts_with("truncated"));
+    check_pixel_accounting(&cut, &s);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn draw_covering_all_vram() {
+    // Fills of the whole VRAM (1024x511 and the last line: fill heights are 9 bits), then
+    // a 1023x511 rectangle: scaled-down images, exact counts (gpu.md §8: w = ((3F1h & 3FFh)
+    // + Fh) & ~Fh = 1024).
+    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
+                gp0 02102030 00000000 01ff03f1\n\
+                gp0 02102030 01ff0000 000103f1\n\
+                gp0 6000ff00 00000000 01ff03ff\n";
+    let (s, rows, dir) = report(text, "whole");
+    assert_eq!(s.changed[3], 1024 * 511);
+    assert_eq!(s.changed[4], 1024);
+    assert_eq!(s.changed[5], 1023 * 511);
+    let crop = rows[5]["img"]["crop"].as_array().unwrap();
+    assert!(crop[4].as_u64().unwrap() >= 4, "scaled down");
+    check_pixel_accounting(text, &s);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_million_commands_stay_usable() {
+    // 10^6 commands: environment words and small rectangles. The report must finish and
+    // page its rows into chunk files.
+    let mut text = String::from("gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n");
+    for i in 0..333_333u32 {
+        let (x, y) = (i % 1000, (i / 1000) % 500);
+        text.push_str(&format!(
+            "gp0 e1000000\ngp0 e6000000\ngp0 6800{:04x} {:04x}{:04x}\n",
+            i & 0xFFFF,
+            y,
+            x
+        ));
+    }
+    let commands = command_stream::parse(&text).unwrap();
+    assert_eq!(commands.len(), 1_000_002);
+    let dir = out_dir("million");
+    let mut gpu = Gpu::new();
+    let start = std::time::Instant::now();
+    let s = write_report(
+        &mut gpu,
+        &commands,
+        &dir,
+        "million",
+        InspectOptions {
+            max_images: 1000,
+            ..InspectOptions::default()
+        },
+        None,
+        None,
+    )
+    .unwrap();
+    eprintln!("10^6 commands: {:.1} s", start.elapsed().as_secs_f64());
+    assert_eq!(s.commands, 1_000_002);
+    assert_eq!(s.images, 1000);
+    let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
+    assert!(index.contains("\"commands\":1000002"));
+    assert!(
+        dir.join(format!(
+            "data/chunk-{:05}.js",
+            1_000_001 / wobble::inspect::CHUNK
+        ))
+        .is_file()
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn rendered_frame_traces_faces_to_packets() {
+    use wobble::pipeline::{FaceFate, PipelineOptions, Renderer};
+    let scene = wobble::scene::Scene::default_scene();
+    let mut renderer = Renderer::new(scene, PipelineOptions::default()).unwrap();
+    renderer.render_frame(0);
+    let (stats, trace) = renderer.render_frame_traced(1).unwrap();
+    // The fates add up to the frame's counts.
+    let count = |f: &dyn Fn(&FaceFate) -> bool| trace.faces.iter().filter(|r| f(&r.fate)).count();
+    assert_eq!(count(&|f| matches!(f, FaceFate::Drawn { .. })), stats.drawn);
+    assert_eq!(count(&|f| matches!(f, FaceFate::Culled)), stats.culled);
+    assert_eq!(
+        count(&|f| matches!(f, FaceFate::Offscreen)),
+        stats.offscreen
+    );
+    assert_eq!(
+        count(&|f| matches!(f, FaceFate::Dropped(_) | FaceFate::Overflow)),
+        stats.dropped
+    );
+    assert_eq!(count(&|f| !matches!(f, FaceFate::Split)), stats.polygons);
+    // Every drawn face has exactly one packet, at its OT slot order.
+    for (i, r) in trace.faces.iter().enumerate() {
+        let packets = trace.packets.iter().filter(|(_, f)| *f == Some(i)).count();
+        let drawn = matches!(r.fate, FaceFate::Drawn { .. });
+        assert_eq!(packets, usize::from(drawn), "face record {i}");
+    }
+    // Replaying the traced packets on the GPU as it was reproduces the frame.
+    let dir = out_dir("frame");
+    let s = wobble::inspect::write_frame_report(
+        renderer.scene(),
+        &trace,
+        &dir,
+        "frame",
+        InspectOptions::default(),
+    )
+    .unwrap();
+    assert!(s.final_vram == renderer.gpu().vram().as_slice());
+    assert_eq!(s.commands, trace.packets.len() + 1);
+    let rows = rows(&dir);
+    let traced = rows
+        .iter()
+        .filter(|r| r["origin"].as_str().is_some_and(|o| o.contains("face")))
+        .count();
+    assert_eq!(traced, stats.drawn);
+    assert!(
+        std::fs::read_to_string(dir.join("data/faces.js"))
+            .unwrap()
+            .contains("culled")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
