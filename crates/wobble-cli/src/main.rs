@@ -219,6 +219,23 @@ fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
     Ok(outcome.failed == 0)
 }
 
+/// What a stream left unfinished, for the end-of-stream warning.
+fn unfinished_text(pending: gpu::PendingInput) -> String {
+    match pending {
+        gpu::PendingInput::Packet {
+            command,
+            received,
+            expected,
+        } => format!("mid-packet: command {command:08X} has {received} of its {expected} words"),
+        gpu::PendingInput::Transfer { remaining_words } => {
+            format!("mid-transfer: a CPU-to-VRAM transfer still expects {remaining_words} words")
+        }
+        gpu::PendingInput::Polyline => {
+            "inside a polyline with no terminator word (5xxx5xxxh)".to_string()
+        }
+    }
+}
+
 fn replay(args: &ReplayArgs) -> Result<()> {
     let output = args.output.clone().unwrap_or_else(|| {
         let stem = args.stream.file_stem().unwrap_or_default();
@@ -235,7 +252,15 @@ fn replay(args: &ReplayArgs) -> Result<()> {
     let commands =
         command_stream::parse(&text).map_err(|e| format!("{}: {e}", args.stream.display()))?;
     let mut gpu = Gpu::new();
-    command_stream::run(&mut gpu, &commands);
+    let summary = command_stream::run(&mut gpu, &commands);
+    if let Some(u) = summary.unfinished {
+        eprintln!(
+            "warning: {}: the stream ends {} (started at line {})",
+            args.stream.display(),
+            unfinished_text(u.pending),
+            u.line
+        );
+    }
     let vram = gpu.vram().as_slice();
     let expand = Expand::from(args.expand);
     let img = match args.region {

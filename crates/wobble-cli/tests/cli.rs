@@ -298,3 +298,56 @@ fn replay_checks_outputs_before_writing() {
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert!(left.is_empty(), "temporary files left: {left:?}");
 }
+
+/// A stream that ends mid-packet, mid-transfer or inside a polyline is warned about on
+/// stderr with the line where the unfinished input started.
+#[test]
+fn replay_warns_on_unfinished_stream() {
+    let cases = [
+        // Line 2: a flat triangle (GP0 20h, 4 words) given only 2.
+        (
+            "gp1 00000000\ngp0 20FF0000 00000000\n",
+            "mid-packet",
+            "line 2",
+        ),
+        // Line 3: a 2x2 CPU-to-VRAM transfer (2 data words) given one.
+        (
+            "# copy\n\ngp0 A0000000 00000000 00020002 7FFF7FFF\n",
+            "mid-transfer",
+            "line 3",
+        ),
+        // Line 1: a polyline with no terminator.
+        ("gp0 48FFFFFF 00000000 00100010\n", "polyline", "line 1"),
+    ];
+    for (i, (text, what, line)) in cases.iter().enumerate() {
+        let stream = tmp(&format!("unfinished{i}.gpu"));
+        std::fs::write(&stream, text).unwrap();
+        let png = tmp(&format!("unfinished{i}.png"));
+        let o = wobble(&[
+            "replay",
+            stream.to_str().unwrap(),
+            "-o",
+            png.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains("warning") && e.contains(what) && e.contains(line),
+            "case {i}: {e}"
+        );
+    }
+    let stream = tmp("finished.gpu");
+    std::fs::write(&stream, "gp0 20FF0000 00000000 00100000 00000010\n").unwrap();
+    let png = tmp("finished.png");
+    let o = wobble(&[
+        "replay",
+        stream.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+    ]);
+    assert!(
+        o.status.success() && !stderr(&o).contains("warning"),
+        "{}",
+        stderr(&o)
+    );
+}
