@@ -278,7 +278,7 @@ pub fn vertex_jitter(scene: &Scene, mode: DivideMode, subpixel: bool, frames: u3
             let mut hw = Vec::with_capacity(vertices.len());
             let mut rf = Vec::with_capacity(vertices.len());
             for vertex in &vertices {
-                let q = g.project(*vertex);
+                let q = g.project_subpixel(*vertex);
                 let p = [vertex.x as f64, vertex.y as f64, vertex.z as f64];
                 let world: [f64; 3] =
                     std::array::from_fn(|r| (0..3).map(|c| rot[r][c] * p[c]).sum::<f64>() + rel[r]);
@@ -288,18 +288,13 @@ pub fn vertex_jitter(scene: &Scene, mode: DivideMode, subpixel: bool, frames: u3
                 let sx = w / 2.0 + hp * cam[0] / cam[2];
                 let sy = h / 2.0 + hp * cam[1] / cam[2];
                 let on_screen = visible && (0.0..w).contains(&sx) && (0.0..h).contains(&sy);
-                let snapped = (q.x as f64, q.y as f64);
+                // The GTE's 16.16 screen position before truncation, saturated to
+                // -400h..3FFh.FFFFh: only positions whose reference lies on the screen count,
+                // and those are well inside that range, so the saturation never applies.
                 let position = if subpixel {
-                    // The GTE's 16.16 screen position before truncation.
-                    let (qd, _) = gte::unr::divide(mode, scene.camera.h, q.sz);
-                    let ir1 = g.gte().read_data(9) as i32 as f64;
-                    let ir2 = g.gte().read_data(10) as i32 as f64;
-                    (
-                        w / 2.0 + qd as f64 * ir1 / 65536.0,
-                        h / 2.0 + qd as f64 * ir2 / 65536.0,
-                    )
+                    (q.x.to_num::<f64>(), q.y.to_num::<f64>())
                 } else {
-                    snapped
+                    (f64::from(q.projected.x), f64::from(q.projected.y))
                 };
                 hw.push(on_screen.then_some(position));
                 rf.push(on_screen.then_some((sx, sy)));
