@@ -8,6 +8,9 @@
 //! - [`gte_vectors`]: replay of GTE test vectors;
 //! - [`vram_image`]: VRAM to images and the raw VRAM file format.
 
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
+
 pub mod gte_vectors;
 pub mod pipeline;
 pub mod reference;
