@@ -1,18 +1,19 @@
 //! GP1 display control (gpu.md §9) and the GPUSTAT register.
 
 use crate::state::{BlendMode, TextureDepth};
-use crate::{Gpu, drawing};
+use crate::{Gpu, drawing, timing};
 
-/// The part of VRAM the display shows, from GP1(05h) and GP1(08h).
+/// The part of VRAM the display shows, from GP1(05h)-(08h).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct DisplayArea {
     /// Left edge in VRAM halfwords.
     pub x: u16,
     /// Top line.
     pub y: u16,
-    /// Width in display pixels (256, 320, 368, 512 or 640).
+    /// Width in display pixels: the GP1(06h) range in dots, rounded to a multiple of 4
+    /// (320 for a 2560-cycle range at 8 cycles a dot).
     pub width: u16,
-    /// Height in lines (240, or 480 when interlaced at 480 lines).
+    /// Height in lines: the GP1(07h) range, doubled in 480i (240 for the reset range).
     pub height: u16,
     /// 24-bit colour display: each pixel spans 1.5 halfwords.
     pub color_24bit: bool,
@@ -20,6 +21,7 @@ pub struct DisplayArea {
 
 /// State written through GP1 (gpu.md §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DisplayState {
     /// GP1(03h): display disabled.
     pub disabled: bool,
@@ -53,20 +55,34 @@ impl Default for DisplayState {
 }
 
 impl DisplayState {
-    /// The displayed VRAM rectangle: width from mode bits 0-1 and 6 (256/320/512/640, 368),
-    /// height 480 when bits 2 and 5 (480 lines, interlace) are set, else 240; bit 4 24-bit.
+    /// The displayed VRAM rectangle. Width: the GP1(06h) range X1..X2 (video cycles,
+    /// clamped to the line) in dots of the GP1(08h) resolution, `((X2 - X1) / divider + 2)
+    /// & !3` (docs/hardware/timing.md §5), 0 when X2 <= X1. Height: Y2 - Y1 of GP1(07h), clamped
+    /// to the field, doubled when GP1(08h) bits 2 and 5 (480 lines, interlace) are both set
+    /// (docs/hardware/timing.md §6, §7).
     pub fn area(&self) -> DisplayArea {
-        let width = if self.mode & 0x40 != 0 {
-            368
+        let pal = self.mode & 0x08 != 0;
+        let interlaced = self.mode & 0x20 != 0;
+        let line = timing::cycles_per_line(pal);
+        let x1 = (self.h_range.0 as u32).min(line);
+        let x2 = (self.h_range.1 as u32).min(line);
+        let width = if x2 > x1 {
+            ((x2 - x1) / timing::dot_divider(self.mode) + 2) & !3
         } else {
-            [256, 320, 512, 640][(self.mode & 3) as usize]
+            0
         };
-        let height = if self.mode & 0x24 == 0x24 { 480 } else { 240 };
+        let lines = timing::lines_per_field(pal, interlaced, 0);
+        let y1 = (self.v_range.0 as u32).min(lines);
+        let y2 = (self.v_range.1 as u32).min(lines);
+        let mut height = y2.saturating_sub(y1);
+        if self.mode & 0x24 == 0x24 {
+            height *= 2;
+        }
         DisplayArea {
             x: self.start_x,
             y: self.start_y,
-            width,
-            height,
+            width: width as u16,
+            height: height as u16,
             color_24bit: self.mode & 0x10 != 0,
         }
     }
@@ -122,8 +138,8 @@ impl Gpu {
     }
 
     /// GP1(10h..1Fh): latch internal register `word & 7` into GPUREAD: 2 texture window,
-    /// 3/4 drawing area corners, 5 drawing offset, 7 GPU version (2); other indices keep the
-    /// latch (psx-spx "GP1(10h) Get GPU Info").
+    /// 3/4 drawing area corners (X bits 0-9, Y bits 10-19 on the v2 GPU), 5 drawing offset,
+    /// 7 GPU version (2); other indices keep the latch (psx-spx "GP1(10h) Get GPU Info").
     fn info(&mut self, word: u32) {
         let d = &self.draw;
         self.gpuread_latch = match word & 7 {
@@ -143,12 +159,12 @@ impl Gpu {
     }
 
     /// GPUSTAT (psx-spx "GPU Status Register"): draw mode bits 0-10, mask bits 11-12, display
-    /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA direction 29-30. Bit 13 reads 1
-    /// and bit 31 0 (no video timing is modelled). The ready bits follow the FIFO and the
-    /// drawing time (docs/hardware/dma.md §8): 26 when nothing is being
-    /// received, queued or drawn; 27 while a VRAM-to-CPU transfer has data; 28 unless a
-    /// complete command waits in the FIFO, the FIFO is full, or a polygon or line is being
-    /// received; 25 is 0, FIFO-not-full, bit 28 or bit 27 for DMA direction 0 to 3.
+    /// mode bits 14, 16-22, display disable 23, IRQ 24, DMA direction 29-30; bits 13 and 31
+    /// from the video timing ([`Gpu::interlace_field_bit`], [`Gpu::line_parity_bit`]). The
+    /// ready bits follow the FIFO and the drawing time (docs/hardware/dma.md §8): 26 when
+    /// nothing is being received, queued or drawn; 27 while a VRAM-to-CPU transfer has data;
+    /// 28 unless a complete command waits in the FIFO, the FIFO is full, or a polygon or line
+    /// is being received; 25 is 0, FIFO-not-full, bit 28 or bit 27 for DMA direction 0 to 3.
     pub fn gpustat(&self) -> u32 {
         let m = &self.draw.mode;
         let mut s = (m.page_x as u32 / 64) & 0xF;
@@ -169,7 +185,7 @@ impl Gpu {
         s |= (m.draw_to_display as u32) << 10;
         s |= (self.draw.mask.set as u32) << 11;
         s |= (self.draw.mask.check as u32) << 12;
-        s |= 1 << 13;
+        s |= (self.interlace_field_bit() as u32) << 13;
         let mode = self.display.mode as u32;
         s |= ((mode >> 7) & 1) << 14;
         s |= (m.texture_disable as u32) << 15;
@@ -196,6 +212,39 @@ impl Gpu {
         s |= (ready_read as u32) << 27;
         s |= (ready_dma as u32) << 28;
         s |= (self.display.dma_direction as u32) << 29;
+        s |= (self.line_parity_bit() as u32) << 31;
         s
+    }
+
+    /// GPUSTAT.13: 1 when GP1(08h) bit 5 (interlace) is clear, else the current field
+    /// (docs/hardware/timing.md §7). Which field value the console reports first is not
+    /// recorded; the model's field 0 (the one showing the display start line) reads 0.
+    pub fn interlace_field_bit(&self) -> bool {
+        if self.display.mode & 0x20 == 0 {
+            true
+        } else {
+            self.timing.field() == 1
+        }
+    }
+
+    /// GPUSTAT.31: 0 during vblank; otherwise bit 0 of the VRAM line being displayed, which
+    /// changes every scanline in 240-line modes and every field in 480i (docs/hardware/timing.md §7; psx-spx "GPU Status
+    /// Register": "0=Even or Vblank, 1=Odd").
+    pub fn line_parity_bit(&self) -> bool {
+        if self.timing.in_vblank(&self.display) {
+            return false;
+        }
+        self.displayed_line_parity() == 1
+    }
+
+    /// Bit 0 of the VRAM line the current field shows (480i) or the current scanline shows
+    /// (other modes).
+    pub(crate) fn displayed_line_parity(&self) -> u32 {
+        let start = self.display.start_y as u32;
+        if self.display.mode & 0x24 == 0x24 {
+            (start + self.timing.field() as u32) & 1
+        } else {
+            (start + self.timing.display_line(&self.display)) & 1
+        }
     }
 }

@@ -161,10 +161,10 @@ fn transfer_cycles(words: u32) -> u32 {
     words.saturating_add(words / 16)
 }
 
-/// GPU cycles to CPU cycles, rounded up, at the NTSC clock ratio (53 693 175 Hz GPU,
-/// 33 868 800 Hz CPU).
+/// GPU cycles to CPU cycles, rounded up, at the NTSC console's 7/11 (docs/hardware/timing.md
+/// §1; PAL's clock is within 0.04% of it).
 fn gpu_to_cpu_cycles(gpu: u32) -> u32 {
-    let cpu = (gpu as u64 * 33_868_800).div_ceil(53_693_175);
+    let cpu = (gpu as u64 * 7).div_ceil(11);
     u32::try_from(cpu).unwrap_or(u32::MAX)
 }
 

@@ -20,8 +20,9 @@ pub(crate) const FIFO_WORDS: u32 = 16;
 /// FIFO is overfilled, in which case the newest entries merge.
 const QUEUE_LEN: usize = FIFO_WORDS as usize;
 
-/// NTSC GPU clock over two CPU clocks, reduced: 53 693 175 / (2 * 33 868 800).
-const UNIT_TO_GPU: (u64, u64) = (715_909, 903_168);
+/// GPU clock over two CPU clocks: 11/14, the NTSC console's 11/7 ratio
+/// (docs/hardware/timing.md §1; PAL's clock is within 0.04% of it, inside this model's error).
+const UNIT_TO_GPU: (u64, u64) = (11, 14);
 
 /// Draw units (half CPU cycles) to GPU cycles, rounded up, saturating at `u32::MAX`.
 pub(crate) fn units_to_gpu(units: u64) -> u32 {
@@ -125,6 +126,7 @@ impl Cost {
 
 /// One unit of work waiting in the FIFO: the words it occupies and its time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Queued {
     words: u32,
     cycles: u32,
@@ -132,6 +134,7 @@ struct Queued {
 
 /// Drawing-busy time and FIFO occupancy, in GPU cycles.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Drawing {
     /// GPU cycles left on the unit being executed.
     busy: u32,
@@ -339,13 +342,13 @@ mod tests {
 
     #[test]
     fn unit_conversion_matches_the_clock_ratio() {
-        // 903 168 units = 451 584 CPU cycles = 715 909 GPU cycles exactly.
-        assert_eq!(units_to_gpu(903_168), 715_909);
+        // 14 units = 7 CPU cycles = 11 GPU cycles exactly.
+        assert_eq!(units_to_gpu(14), 11);
         // One unit is 0.79 GPU cycles: rounds up to 1.
         assert_eq!(units_to_gpu(1), 1);
         assert_eq!(units_to_gpu(0), 0);
-        // 100 units = 79.27 GPU cycles, rounded up.
-        assert_eq!(units_to_gpu(100), 80);
+        // 100 units = 78.57 GPU cycles, rounded up.
+        assert_eq!(units_to_gpu(100), 79);
     }
 
     #[test]

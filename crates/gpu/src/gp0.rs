@@ -4,7 +4,7 @@
 
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
-use crate::rasterizer::{draw_line, draw_rectangle, draw_triangle};
+use crate::rasterizer::{Rows, draw_line_rows, draw_rectangle_rows, draw_triangle_rows};
 use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
@@ -14,6 +14,7 @@ const MAX_PACKET: usize = 12;
 
 /// What incoming GP0 words mean right now.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 enum Mode {
     /// Collecting a command packet.
     #[default]
@@ -26,6 +27,7 @@ enum Mode {
 
 /// A polyline in progress (gpu.md §2, §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 struct Polyline {
     line: Line,
     /// Gouraud: the colour word of the next vertex has been read.
@@ -34,10 +36,33 @@ struct Polyline {
 
 /// GP0 packet assembly state.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Gp0State {
     buf: [u32; MAX_PACKET],
     len: usize,
     mode: Mode,
+}
+
+/// GP0 input that has started but not finished: what a stream that stops here leaves
+/// behind (gpu.md §2, §8).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PendingInput {
+    /// A command packet with fewer words than its command needs.
+    Packet {
+        /// The packet's first (command) word.
+        command: u32,
+        /// Words received, the command word included.
+        received: usize,
+        /// Words the command needs.
+        expected: usize,
+    },
+    /// A CPU-to-VRAM transfer (GP0 A0h) still waiting for data words.
+    Transfer {
+        /// Data words still expected (two pixels a word).
+        remaining_words: u32,
+    },
+    /// A polyline (GP0 48h-5Fh with bit 27) not yet ended by its terminator word.
+    Polyline,
 }
 
 impl Gp0State {
@@ -178,13 +203,34 @@ impl Gpu {
         }
     }
 
+    /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
+    /// transfer or an unterminated polyline. `None` when the next word starts a new command.
+    pub fn pending_input(&self) -> Option<PendingInput> {
+        match self.gp0.mode {
+            Mode::Write(t) => Some(PendingInput::Transfer {
+                remaining_words: t.remaining_pixels().div_ceil(2),
+            }),
+            Mode::Polyline(_) => Some(PendingInput::Polyline),
+            Mode::Command if self.gp0.len > 0 => {
+                let command = self.gp0.buf[0];
+                Some(PendingInput::Packet {
+                    command,
+                    received: self.gp0.len,
+                    expected: packet_len(command),
+                })
+            }
+            Mode::Command => None,
+        }
+    }
+
     /// Execute a complete packet; returns its cost in draw units.
     fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         match cmd >> 24 {
             0x01 => self.clut.invalidate(),
             0x02 => {
-                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2]);
+                let rows = self.draw_rows();
+                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2], rows);
                 return Cost::fill(w, h);
             }
             0x1F => {
@@ -217,13 +263,15 @@ impl Gpu {
                 w.offset_x = (cmd >> 10 & 0x1F) as u8;
                 w.offset_y = (cmd >> 15 & 0x1F) as u8;
             }
+            // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
+            // "Modelled GPU version").
             0xE3 => {
                 self.draw.area.left = (cmd & 0x3FF) as u16;
-                self.draw.area.top = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.top = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE4 => {
                 self.draw.area.right = (cmd & 0x3FF) as u16;
-                self.draw.area.bottom = (cmd >> 10 & 0x1FF) as u16;
+                self.draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
             }
             0xE5 => {
                 self.draw.offset_x = sext11(cmd & 0x7FF) as i16;
@@ -236,6 +284,18 @@ impl Gpu {
             _ => {}
         }
         0
+    }
+
+    /// The lines drawing may write: in 480i (GP1(08h) bits 2 and 5) with GP0(E1h) bit 10
+    /// clear, not those of the field being displayed, whose VRAM lines have bit 0 equal to
+    /// that of the display start line plus the field (docs/hardware/gpu.md §8; psx-spx
+    /// "GP1(08h)", "GPU Status Register" bit 31).
+    fn draw_rows(&self) -> Rows {
+        if self.display.mode & 0x24 == 0x24 && !self.draw.mode.draw_to_display {
+            Rows::SkipParity(self.displayed_line_parity() as u8)
+        } else {
+            Rows::All
+        }
     }
 
     /// A vertex from a position word plus the drawing offset (gpu.md §2).
@@ -292,6 +352,7 @@ impl Gpu {
         let texture = textured.then(|| self.texture(clut_attr, raw));
         let clut_units = texture.map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let read_back = semi || self.draw.mask.check;
+        let rows = self.draw_rows();
         let tri = Triangle {
             vertices: [verts[0], verts[1], verts[2]],
             gouraud,
@@ -299,7 +360,7 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither && dither_applies(gouraud, textured, raw),
         };
-        let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &tri);
+        let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
         if quad {
@@ -307,7 +368,8 @@ impl Gpu {
                 vertices: [verts[1], verts[2], verts[3]],
                 ..tri
             };
-            let drawn = draw_triangle(&mut self.vram, &self.draw, &mut self.clut, &second);
+            let drawn =
+                draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &second, rows);
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
         units
@@ -343,7 +405,8 @@ impl Gpu {
             blend: semi.then_some(self.draw.mode.blend),
             dither: self.draw.mode.dither,
         };
-        let drawn = draw_line(&mut self.vram, &self.draw, &line);
+        let rows = self.draw_rows();
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);
         if polyline {
             self.gp0.mode = Mode::Polyline(Polyline {
                 line,
@@ -371,7 +434,8 @@ impl Gpu {
         next.color = p.pending_color.unwrap_or(last.color);
         p.line.vertices = [last, next];
         p.pending_color = None;
-        let drawn = draw_line(&mut self.vram, &self.draw, &p.line);
+        let rows = self.draw_rows();
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, &p.line, rows);
         self.gp0.mode = Mode::Polyline(p);
         Some(Cost::line(drawn))
     }
@@ -411,7 +475,8 @@ impl Gpu {
             flip_x: self.draw.mode.flip_x,
             flip_y: self.draw.mode.flip_y,
         };
-        let drawn = draw_rectangle(&mut self.vram, &self.draw, &mut self.clut, &rect);
+        let rows = self.draw_rows();
+        let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
         clut_units.saturating_add(Cost::rectangle(semi || self.draw.mask.check, drawn))
     }
 }

@@ -4,7 +4,9 @@
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
 //! [`Gpu::vram`]. Commands may arrive split at any word boundary.
-#![cfg_attr(not(feature = "std"), no_std)]
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 extern crate alloc;
 
@@ -13,12 +15,16 @@ pub mod command_stream;
 mod display;
 mod dma;
 mod drawing;
+mod frame;
 mod gp0;
 pub mod ordering_table;
 pub mod primitive;
 pub mod rasterizer;
+#[cfg(feature = "serde")]
+mod serde_array;
 pub mod state;
 pub mod texture;
+mod timing;
 mod transfer;
 
 use alloc::boxed::Box;
@@ -29,8 +35,11 @@ pub use dma::{
     DmaError, LINKED_LIST_WORD_BUDGET, LinkedListReport, ListEnd, RAM_MASK, RAM_SIZE,
     dma_clear_ordering_table,
 };
+pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
+pub use gp0::PendingInput;
 use state::DrawState;
 use texture::ClutCache;
+pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 
 /// VRAM width in halfwords.
 pub const VRAM_WIDTH: usize = 1024;
@@ -42,42 +51,68 @@ pub const VRAM_LEN: usize = VRAM_WIDTH * VRAM_HEIGHT;
 /// 1024x512 halfwords of 1555 MBGR pixels, row-major (`y * 1024 + x`) (gpu.md §1).
 #[derive(Clone, PartialEq, Eq)]
 pub struct Vram {
-    pixels: Box<[u16]>,
+    pixels: Box<[u16; VRAM_LEN]>,
 }
 
 impl Vram {
-    /// All-zero VRAM.
+    /// All-zero VRAM, allocated on the heap directly (no 1 MiB stack temporary).
     pub fn new() -> Self {
-        Self {
-            pixels: vec![0u16; VRAM_LEN].into_boxed_slice(),
-        }
+        let pixels = match vec![0u16; VRAM_LEN].into_boxed_slice().try_into() {
+            Ok(pixels) => pixels,
+            // A slice of VRAM_LEN elements always converts; this arm is never taken.
+            Err(_) => Box::new([0u16; VRAM_LEN]),
+        };
+        Self { pixels }
     }
     /// The whole VRAM, `VRAM_WIDTH * VRAM_HEIGHT` halfwords.
     pub fn as_slice(&self) -> &[u16] {
-        &self.pixels
+        &self.pixels[..]
     }
     /// The whole VRAM, mutable.
     pub fn as_mut_slice(&mut self) -> &mut [u16] {
+        &mut self.pixels[..]
+    }
+    /// The whole VRAM as a fixed-size array: indices masked with `VRAM_LEN - 1` need no
+    /// bounds check.
+    pub fn as_array(&self) -> &[u16; VRAM_LEN] {
+        &self.pixels
+    }
+    /// The whole VRAM as a fixed-size array, mutable.
+    pub fn as_array_mut(&mut self) -> &mut [u16; VRAM_LEN] {
         &mut self.pixels
     }
     /// The pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn pixel(&self, x: usize, y: usize) -> u16 {
-        self.pixels
-            .get((y & 511) * VRAM_WIDTH + (x & 1023))
-            .copied()
-            .unwrap_or(0)
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)]
     }
     /// Set the pixel at (x, y), coordinates wrapped to the VRAM.
     pub fn set_pixel(&mut self, x: usize, y: usize, value: u16) {
-        if let Some(p) = self.pixels.get_mut((y & 511) * VRAM_WIDTH + (x & 1023)) {
-            *p = value;
-        }
+        self.pixels[((y & 511) * VRAM_WIDTH + (x & 1023)) & (VRAM_LEN - 1)] = value;
     }
 }
 
 impl Default for Vram {
     fn default() -> Self {
         Self::new()
+    }
+}
+
+/// VRAM is serialized as a sequence of `VRAM_LEN` halfwords, row-major.
+#[cfg(feature = "serde")]
+impl serde::Serialize for Vram {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_seq(self.pixels.iter())
+    }
+}
+
+/// VRAM is read back from a sequence of exactly `VRAM_LEN` halfwords; any other length is an
+/// error.
+#[cfg(feature = "serde")]
+impl<'de> serde::Deserialize<'de> for Vram {
+    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut vram = Vram::new();
+        deserializer.deserialize_seq(serde_array::Fill(vram.as_mut_slice()))?;
+        Ok(vram)
     }
 }
 
@@ -89,6 +124,7 @@ impl core::fmt::Debug for Vram {
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Gpu {
     vram: Vram,
     draw: DrawState,
@@ -102,64 +138,64 @@ pub struct Gpu {
     irq_event: bool,
     texture_disable_allowed: bool,
     drawing: drawing::Drawing,
-    /// CPU-to-GPU clock conversion remainder (GPU cycles * 33 868 800).
-    clock_remainder: u64,
+    timing: timing::Timing,
 }
-
-/// What happened during one [`Gpu::run`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Events {
-    /// GP0(1Fh) raised the GPU IRQ since the previous run.
-    pub gpu_irq: bool,
-    /// The GPU went from busy (drawing, or commands waiting in the FIFO) to idle.
-    pub drawing_done: bool,
-}
-
-/// CPU clock in Hz (44100 * 768).
-const CPU_HZ: u64 = 33_868_800;
-/// NTSC GPU clock in Hz.
-const GPU_HZ: u64 = 53_693_175;
 
 impl Gpu {
-    /// A GPU in its reset state with all-zero VRAM.
+    /// An NTSC GPU in its reset state with all-zero VRAM.
     pub fn new() -> Self {
+        Self::with_standard(VideoStandard::Ntsc)
+    }
+
+    /// A GPU of a console of region `standard` at power-on: reset state, all-zero VRAM, the
+    /// display mode of that standard (GP1(08h) bit 3 set for PAL) and its video clock.
+    pub fn with_standard(standard: VideoStandard) -> Self {
+        let mut display = DisplayState::default();
+        if standard == VideoStandard::Pal {
+            display.mode |= 0x08;
+        }
         Self {
             vram: Vram::new(),
             draw: DrawState::default(),
             clut: ClutCache::default(),
             gp0: gp0::Gp0State::default(),
             read: transfer::ReadTransfer::default(),
-            display: DisplayState::default(),
+            display,
             gpuread_latch: 0,
             irq: false,
             irq_event: false,
             texture_disable_allowed: false,
             drawing: drawing::Drawing::default(),
-            clock_remainder: 0,
+            timing: timing::Timing::new(standard),
         }
     }
 
-    /// Advance time by `cpu_cycles` CPU cycles and report what happened.
+    /// The console region this GPU was built for (its video clock).
+    pub fn video_standard(&self) -> VideoStandard {
+        self.timing.standard()
+    }
+
+    /// Advance time by `cpu_cycles` CPU cycles (33.8688 MHz) and report what happened: dot
+    /// clocks and hblanks for the timers, vblank edges for IRQ0 (`docs/gpu.md`, "Video
+    /// timing"). Any split of a span of time into calls reports the same totals.
     pub fn run(&mut self, cpu_cycles: u32) -> Events {
-        let total = cpu_cycles as u64 * GPU_HZ + self.clock_remainder;
-        let gpu_cycles = u32::try_from(total / CPU_HZ).unwrap_or(u32::MAX);
-        self.clock_remainder = total % CPU_HZ;
-        let (gpu_irq, drawing_done) = self.advance_drawing(gpu_cycles);
-        Events {
-            gpu_irq,
-            drawing_done,
-        }
+        let video = self.timing.convert(cpu_cycles);
+        let mut events = self.timing.advance(video, &self.display);
+        let (gpu_irq, drawing_done) =
+            self.advance_drawing(u32::try_from(video).unwrap_or(u32::MAX));
+        events.gpu_irq = gpu_irq;
+        events.drawing_done = drawing_done;
+        events
     }
 
-    /// CPU cycles until [`Gpu::run`] would report an event (rounded up, so running exactly
-    /// this many reaches it); 0 when one awaits delivery; `u32::MAX` when none comes.
+    /// CPU cycles until [`Gpu::run`] would report an event: an hblank or vblank edge, the GPU
+    /// IRQ or the end of drawing (rounded up, so running exactly this many reaches it); 0 when
+    /// one awaits delivery; `u32::MAX` when none comes. Dot counts are not events.
     pub fn cycles_until_next_event(&self) -> u32 {
+        let video = self.timing.cycles_until_next_event(&self.display);
         match self.drawing_cycles_until_event() {
-            None => u32::MAX,
-            Some(gpu) => {
-                let need = (gpu as u64 * CPU_HZ).saturating_sub(self.clock_remainder);
-                u32::try_from(need.div_ceil(GPU_HZ)).unwrap_or(u32::MAX)
-            }
+            None => video,
+            Some(gpu) => video.min(self.timing.cpu_cycles_for(gpu as u64)),
         }
     }
 
@@ -206,7 +242,8 @@ impl Gpu {
         &self.display
     }
 
-    /// The display area the current GP1 state selects (gpu.md §9).
+    /// The display area the current GP1 state selects (gpu.md §9): position, size in
+    /// pixels from the display ranges, colour depth ([`DisplayState::area`]).
     pub fn display_area(&self) -> DisplayArea {
         self.display.area()
     }

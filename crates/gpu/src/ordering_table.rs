@@ -19,6 +19,12 @@ use crate::dma::{WalkEnd, WordImage, walk_nodes};
 pub const END_MARKER: u32 = 0x00FF_FFFF;
 /// Most GP0 words one node can carry (the header's 8-bit count).
 pub const MAX_PACKET_WORDS: usize = 255;
+/// Most words a table (entries plus primitive buffer) can address: links are 24-bit byte
+/// addresses whose bit 23 is the end marker, so a node's byte address `4 * index` must stay
+/// below 80_0000h (gpu.md §2).
+pub const MAX_WORDS: usize = 0x80_0000 / 4;
+/// Deepest table [`OrderingTable::new`] accepts: every entry must be addressable.
+pub const MAX_DEPTH: usize = MAX_WORDS - 1;
 
 /// Why an insertion or walk failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,6 +44,14 @@ pub enum OtError {
     BadLink(u32),
     /// The walk visited more nodes than the buffer can hold: the list has a cycle.
     Cycle,
+    /// The requested depth needs entries at byte addresses 80_0000h or above, which a 24-bit
+    /// link with bit 23 as the end marker cannot reach.
+    TooDeep {
+        /// Depth requested.
+        depth: usize,
+        /// Largest depth accepted ([`MAX_DEPTH`]).
+        max: usize,
+    },
 }
 
 impl fmt::Display for OtError {
@@ -53,6 +67,11 @@ impl fmt::Display for OtError {
             OtError::PrimitiveBufferFull => write!(f, "primitive buffer full"),
             OtError::BadLink(a) => write!(f, "link {a:06X}h points outside the buffer"),
             OtError::Cycle => write!(f, "linked list has a cycle"),
+            OtError::TooDeep { depth, max } => write!(
+                f,
+                "ordering-table depth {depth} exceeds {max}: 24-bit links reach byte addresses \
+                 below 800000h only"
+            ),
         }
     }
 }
@@ -115,16 +134,25 @@ pub struct OrderingTable {
 
 impl OrderingTable {
     /// A cleared table of `depth` entries (at least 1) with room for `primitive_words` words of
-    /// packets and headers.
-    pub fn new(depth: usize, primitive_words: usize) -> Self {
+    /// packets and headers. Words that would lie at byte addresses 80_0000h or above are not
+    /// allocated (no link can reach them). A depth above [`MAX_DEPTH`] is refused with
+    /// [`OtError::TooDeep`].
+    pub fn new(depth: usize, primitive_words: usize) -> Result<Self, OtError> {
+        if depth > MAX_DEPTH {
+            return Err(OtError::TooDeep {
+                depth,
+                max: MAX_DEPTH,
+            });
+        }
         let depth = depth.max(1);
+        let primitive_words = primitive_words.min(MAX_WORDS - depth);
         let mut ot = Self {
             ram: vec![0; depth + primitive_words],
             depth,
             next_free: depth,
         };
         ot.clear();
-        ot
+        Ok(ot)
     }
 
     /// Number of entries.

@@ -6,6 +6,7 @@ use crate::state::{BlendMode, TextureDepth};
 
 /// One vertex: screen position (offset applied), colour and texture coordinate.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Vertex {
     /// X after adding the drawing offset.
     pub x: i32,
@@ -21,6 +22,7 @@ pub struct Vertex {
 
 /// Where and how a textured primitive samples: page, depth, CLUT, modulation.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Texture {
     /// Texture page left edge in halfwords.
     pub page_x: u16,
@@ -38,6 +40,7 @@ pub struct Texture {
 
 /// A triangle (a quad arrives as two: (v0,v1,v2) then (v1,v2,v3)) (gpu.md §3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Triangle {
     /// The three vertices in command order.
     pub vertices: [Vertex; 3],
@@ -53,6 +56,7 @@ pub struct Triangle {
 
 /// A line segment; a polyline arrives as consecutive segments (gpu.md §4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Line {
     /// Endpoints in command order.
     pub vertices: [Vertex; 2],
@@ -66,6 +70,7 @@ pub struct Line {
 
 /// A rectangle (sprite): never dithered, uses the E1 texture page (gpu.md §5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Rectangle {
     /// Top-left corner after the drawing offset; `u`/`v` are the top-left texel.
     pub origin: Vertex,

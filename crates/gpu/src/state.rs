@@ -3,6 +3,7 @@
 
 /// Texture colour depth, E1 bits 7-8 (gpu.md §2, §7). Value 3 behaves as 15-bit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TextureDepth {
     /// 4-bit CLUT indices, four texels per halfword.
     #[default]
@@ -15,6 +16,7 @@ pub enum TextureDepth {
 
 /// Semi-transparency mode, E1 bits 5-6 (gpu.md §6). B = VRAM pixel, F = new pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BlendMode {
     /// 0: (B + F) >> 1.
     #[default]
@@ -29,6 +31,7 @@ pub enum BlendMode {
 
 /// GP0(E1h) draw mode (gpu.md §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DrawMode {
     /// Texture page left edge in halfwords (multiple of 64).
     pub page_x: u16,
@@ -55,6 +58,7 @@ pub struct DrawMode {
 
 /// GP0(E2h) texture window, each field in 8-texel units (5 bits) (gpu.md §2, §7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TextureWindow {
     /// Mask X (bits 0-4).
     pub mask_x: u8,
@@ -66,21 +70,25 @@ pub struct TextureWindow {
     pub offset_y: u8,
 }
 
-/// GP0(E3h)/(E4h) drawing area, inclusive bounds in VRAM coordinates (gpu.md §2).
+/// GP0(E3h)/(E4h) drawing area, inclusive bounds (gpu.md §2). X is 10 bits; Y is 10 bits
+/// (0-1023) on the modelled v2 GPU, compared with the unwrapped pixel Y, while rows are written
+/// at `y & 511`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DrawingArea {
-    /// Leftmost drawable column.
+    /// Leftmost drawable column (0-1023).
     pub left: u16,
-    /// Topmost drawable line.
+    /// Topmost drawable line (0-1023).
     pub top: u16,
-    /// Rightmost drawable column (inclusive).
+    /// Rightmost drawable column, inclusive (0-1023).
     pub right: u16,
-    /// Bottom drawable line (inclusive).
+    /// Bottom drawable line, inclusive (0-1023).
     pub bottom: u16,
 }
 
 /// GP0(E6h) mask bit settings (gpu.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MaskSettings {
     /// Force bit 15 on every written pixel (E6 bit 0).
     pub set: bool,
@@ -90,6 +98,7 @@ pub struct MaskSettings {
 
 /// The whole drawing environment a primitive is drawn with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DrawState {
     /// E1.
     pub mode: DrawMode,

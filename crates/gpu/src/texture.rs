@@ -10,7 +10,9 @@ use crate::state::{TextureDepth, TextureWindow};
 /// when only 4-bit ones are cached; GP0(01h) invalidates it. Overwriting the CLUT in VRAM does
 /// not refresh it.
 #[derive(Clone, Debug)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ClutCache {
+    #[cfg_attr(feature = "serde", serde(with = "crate::serde_array"))]
     entries: [u16; 256],
     key: Option<(u16, u16)>,
     loaded_8bit: bool,

@@ -1,12 +1,14 @@
 //! VRAM transfer commands: fill (02h), VRAM-to-VRAM copy (80h), CPU-to-VRAM (A0h) and
 //! VRAM-to-CPU (C0h) (gpu.md §8).
 
+use crate::rasterizer::Rows;
 use crate::state::MaskSettings;
-use crate::{VRAM_WIDTH, Vram};
+use crate::{VRAM_LEN, VRAM_WIDTH, Vram};
 
 /// A transfer rectangle as the copy commands mask it (gpu.md §8): x & 3FFh, y & 1FFh,
 /// w = ((w-1) & 3FFh) + 1, h = ((h-1) & 1FFh) + 1, so a size of 0 means the maximum.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TransferRect {
     /// Left edge.
     pub x: u16,
@@ -54,9 +56,10 @@ fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSetti
 }
 
 /// GP0(02h) fill (gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
-/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Returns the
-/// filled width and height.
-pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) -> (u32, u32) {
+/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Lines
+/// `rows` drops are skipped (480i, docs/hardware/gpu.md §8). Returns the filled width and
+/// height.
+pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32, rows: Rows) -> (u32, u32) {
     let x = (pos & 0x3F0) as usize;
     let y = ((pos >> 16) & 0x1FF) as usize;
     let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
@@ -64,13 +67,14 @@ pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32) -> (u32, u32) {
     let c = ((color & 0xFF) >> 3)
         | (((color >> 8) & 0xFF) >> 3) << 5
         | (((color >> 16) & 0xFF) >> 3) << 10;
-    let pixels = vram.as_mut_slice();
+    let pixels = vram.as_array_mut();
     for row in 0..h {
+        if !rows.keeps(((y + row) & 511) as i32) {
+            continue;
+        }
         let base = ((y + row) & 511) * VRAM_WIDTH;
         for col in 0..w {
-            if let Some(p) = pixels.get_mut(base + ((x + col) & 1023)) {
-                *p = c as u16;
-            }
+            pixels[(base + ((x + col) & 1023)) & (VRAM_LEN - 1)] = c as u16;
         }
     }
     (w as u32, h as u32)
@@ -99,6 +103,7 @@ pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) 
 /// A CPU-to-VRAM transfer in progress (GP0 A0h): pixels arrive two per word; an odd count
 /// leaves the last word's upper half unused (gpu.md §8).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WriteTransfer {
     rect: TransferRect,
     next: u32,
@@ -108,6 +113,11 @@ impl WriteTransfer {
     /// Start a transfer to `rect`.
     pub fn new(rect: TransferRect) -> Self {
         Self { rect, next: 0 }
+    }
+
+    /// Pixels still to be written.
+    pub fn remaining_pixels(&self) -> u32 {
+        self.rect.pixels().saturating_sub(self.next)
     }
 
     /// Take one data word; returns false when the transfer is complete.
@@ -125,6 +135,7 @@ impl WriteTransfer {
 
 /// A VRAM-to-CPU transfer in progress (GP0 C0h), read through GPUREAD.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ReadTransfer {
     rect: TransferRect,
     next: u32,

@@ -162,15 +162,20 @@ fn gpustat_bits() {
     assert_eq!(g.gpustat() >> 29 & 3, 2);
 }
 
-/// Display area width and height from GP1(08h), start from GP1(05h).
+/// Display area width and height from GP1(08h) and the reset display ranges (2560 video
+/// cycles, 240 lines), start from GP1(05h). psx-spx "GP1(06h)": pixels = (cycles / divider
+/// + 2) & !3, so 368-wide mode shows 2560 / 7 = 365 -> 364 pixels of the reset range.
 #[test]
 fn display_area_modes() {
     let mut g = Gpu::new();
-    for (mode, w) in [(0, 256), (1, 320), (2, 512), (3, 640), (0x40, 368)] {
+    for (mode, w) in [(0, 256), (1, 320), (2, 512), (3, 640), (0x40, 364)] {
         g.gp1(0x0800_0000 | mode);
         assert_eq!(g.display_area().width, w);
         assert_eq!(g.display_area().height, 240);
     }
+    g.gp1(0x0600_0000 | (0x200 + 368 * 7) << 12 | 0x200);
+    assert_eq!(g.display_area().width, 368);
+    g.gp1(0x0600_0000 | (0x200 + 2560) << 12 | 0x200);
     g.gp1(0x0800_0024 | 3);
     assert_eq!(
         (g.display_area().width, g.display_area().height),
@@ -216,7 +221,7 @@ fn command_buffer_reset() {
 /// most-recent-first; the walk ends at the terminator.
 #[test]
 fn ordering_table_order() {
-    let mut ot = OrderingTable::new(8, 64);
+    let mut ot = OrderingTable::new(8, 64).unwrap();
     ot.insert(1, &[0x11]).unwrap();
     ot.insert(6, &[0x61, 0x62]).unwrap();
     ot.insert(1, &[0x12]).unwrap();
@@ -237,7 +242,7 @@ fn ordering_table_order() {
 
 #[test]
 fn ordering_table_errors() {
-    let mut ot = OrderingTable::new(4, 4);
+    let mut ot = OrderingTable::new(4, 4).unwrap();
     assert_eq!(
         ot.insert(4, &[0]),
         Err(OtError::IndexOutOfRange { index: 4, depth: 4 })
@@ -263,7 +268,7 @@ fn ordering_table_errors() {
 /// Walking into a GPU draws in painter's order: a far red rectangle under a near green one.
 #[test]
 fn ordering_table_draws_far_first() {
-    let mut ot = OrderingTable::new(16, 64);
+    let mut ot = OrderingTable::new(16, 64).unwrap();
     ot.insert(2, &[0x6000_FF00, 0, 0x0004_0004]).unwrap(); // near, green
     ot.insert(10, &[0x6000_00FF, 0, 0x0008_0008]).unwrap(); // far, red
     let mut g = Gpu::new();

@@ -19,14 +19,25 @@ fn write(ram: &mut [u8], addr: u32, value: u32) {
     ram[a..a + 4].copy_from_slice(&value.to_le_bytes());
 }
 
-/// Draw units (half CPU cycles) to GPU cycles, rounded up: 53.693175 MHz / (2 * 33.8688 MHz).
+/// Draw units (half CPU cycles) to GPU cycles, rounded up: the NTSC console's GPU clock is
+/// 11/7 of the CPU clock (docs/hardware/timing.md §1), so a unit is 11/14 GPU cycle.
 fn units_to_gpu(units: f64) -> u32 {
-    (units * 53.693175 / (2.0 * 33.8688) - 1e-9).ceil() as u32
+    (units * 11.0 / 14.0 - 1e-9).ceil() as u32
 }
 
-/// GPU cycles to CPU cycles, rounded up.
+/// GPU cycles to CPU cycles, rounded up (7/11).
 fn gpu_to_cpu(gpu: u32) -> u32 {
-    (gpu as f64 * 33.8688 / 53.693175 - 1e-9).ceil() as u32
+    (gpu as f64 * 7.0 / 11.0 - 1e-9).ceil() as u32
+}
+
+/// A GPU whose video timing reports no events (a zero-width horizontal range is an endless
+/// hblank, a vertical range past the last line has no vblank edge; docs/hardware/timing.md
+/// §5, §6), so the next event is the drawing side's.
+fn quiet() -> Gpu {
+    let mut g = Gpu::new();
+    g.gp1(0x0600_0000);
+    g.gp1(0x07FF_FFFF);
+    g
 }
 
 // ---- DMA6 OTC: ps1-tests dma/otc-test ----
@@ -192,7 +203,7 @@ proptest! {
 /// pixels are counted here from VRAM.
 #[test]
 fn flat_triangle_time_follows_drawn_pixels() {
-    let mut g = Gpu::new();
+    let mut g = quiet();
     g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
     g.gp0_words(&[0x2000_00FF, 0x0000_0000, 0x0000_0040, 0x0030_0000]);
     let drawn = g.vram().as_slice().iter().filter(|&&p| p != 0).count();
@@ -204,7 +215,7 @@ fn flat_triangle_time_follows_drawn_pixels() {
 /// Busy-to-idle is reported exactly when the predicted cycles have run, once.
 #[test]
 fn drawing_done_arrives_at_the_predicted_cycle() {
-    let mut g = Gpu::new();
+    let mut g = quiet();
     g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
     g.gp0_words(&[0x6000_00FF, 0, 0x0040_0040]);
     let n = g.cycles_until_next_event();
@@ -262,7 +273,7 @@ fn block_dma_waits_while_the_fifo_is_full() {
 fn dma_wait_is_not_counted_twice() {
     let fill = [0x0200_0000u32, 0, 0x0001_0010];
     let words: Vec<u32> = fill.iter().copied().cycle().take(21).collect();
-    let mut g = Gpu::new();
+    let mut g = quiet();
     let fill_gpu = units_to_gpu(57.0);
     let cycles = g.dma_block_write(&words);
     assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(7 * fill_gpu));
@@ -306,7 +317,7 @@ proptest! {
             let width = (w + 15) & !15;
             total_gpu += units_to_gpu(46.0 + (h * (width / 8 + 9)) as f64);
         }
-        let mut g = Gpu::new();
+        let mut g = quiet();
         g.dma_block_write(&words);
         prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(total_gpu));
         let mut done = 0;

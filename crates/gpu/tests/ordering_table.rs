@@ -11,7 +11,7 @@ fn collect(ot: &OrderingTable) -> Vec<Vec<u32>> {
 
 #[test]
 fn clear_builds_reverse_linked_empty_entries() {
-    let ot = OrderingTable::new(4, 16);
+    let ot = OrderingTable::new(4, 16).unwrap();
     // Entry 0 holds the terminator, entry i links to entry i-1 (byte address 4*(i-1)).
     assert_eq!(&ot.ram()[..4], &[0x00FF_FFFF, 0, 4, 8]);
     assert_eq!(END_MARKER, 0x00FF_FFFF);
@@ -25,7 +25,7 @@ fn clear_builds_reverse_linked_empty_entries() {
 
 #[test]
 fn walk_goes_from_far_end_to_near_end() {
-    let mut ot = OrderingTable::new(8, 64);
+    let mut ot = OrderingTable::new(8, 64).unwrap();
     ot.insert(1, &[0x1111_1111]).unwrap();
     ot.insert(7, &[0x7777_7777, 0x7777_0001]).unwrap();
     ot.insert(0, &[0x0000_0000]).unwrap();
@@ -46,7 +46,7 @@ fn walk_goes_from_far_end_to_near_end() {
 
 #[test]
 fn same_index_packets_come_out_most_recent_first() {
-    let mut ot = OrderingTable::new(2, 32);
+    let mut ot = OrderingTable::new(2, 32).unwrap();
     ot.insert(1, &[0xA]).unwrap();
     ot.insert(1, &[0xB]).unwrap();
     ot.insert(1, &[0xC]).unwrap();
@@ -55,7 +55,7 @@ fn same_index_packets_come_out_most_recent_first() {
 
 #[test]
 fn clear_empties_the_primitive_buffer() {
-    let mut ot = OrderingTable::new(2, 8);
+    let mut ot = OrderingTable::new(2, 8).unwrap();
     ot.insert(1, &[1, 2, 3]).unwrap();
     assert_eq!(ot.used_words(), 4);
     ot.clear();
@@ -65,7 +65,7 @@ fn clear_empties_the_primitive_buffer() {
 
 #[test]
 fn insertion_errors() {
-    let mut ot = OrderingTable::new(2, 5);
+    let mut ot = OrderingTable::new(2, 5).unwrap();
     assert_eq!(
         ot.insert(2, &[0]),
         Err(OtError::IndexOutOfRange { index: 2, depth: 2 })
@@ -129,4 +129,59 @@ fn cycles_are_detected() {
     let mut delivered = 0usize;
     assert_eq!(walk_ram(&ram, 0, |_| delivered += 1), Err(OtError::Cycle));
     assert!(delivered <= ram.len() + 1);
+}
+
+/// Links are 24-bit byte addresses with bit 23 as the end marker: entry `i` sits at byte
+/// address 4 * i, so a table and its buffer span at most 2^21 words (byte addresses below
+/// 80_0000h). 2^21 - 1 entries are accepted, 2^21 refused with an error naming the limit.
+#[test]
+fn depth_limit() {
+    let limit = 1usize << 21;
+    assert!(OrderingTable::new(limit - 1, 0).is_ok());
+    assert_eq!(
+        OrderingTable::new(limit, 0).unwrap_err(),
+        OtError::TooDeep {
+            depth: limit,
+            max: limit - 1
+        }
+    );
+    assert!(matches!(
+        OrderingTable::new(usize::MAX, usize::MAX),
+        Err(OtError::TooDeep { .. })
+    ));
+    let msg = OtError::TooDeep {
+        depth: limit,
+        max: limit - 1,
+    }
+    .to_string();
+    assert!(msg.contains("2097151") && msg.contains("800000h"), "{msg}");
+}
+
+/// A walk of the deepest legal table visits every entry once, far end first, and ends at the
+/// terminator in entry 0; a packet at the last entry (byte address 7F_FFF8h) and one at entry
+/// 0 both come out, in that order.
+#[test]
+fn deepest_table_walk_visits_every_entry() {
+    let depth = (1usize << 21) - 1;
+    let ot = OrderingTable::new(depth, 0).unwrap();
+    let stats = ot.walk(|_| {}).unwrap();
+    assert_eq!(stats.nodes, depth);
+    assert_eq!(stats.packets, 0);
+
+    let depth = (1usize << 20) + 3;
+    let mut ot = OrderingTable::new(depth, 64).unwrap();
+    ot.insert(depth - 1, &[0xAAAA_AAAA]).unwrap();
+    ot.insert(0, &[0xBBBB_BBBB]).unwrap();
+    let mut seen = Vec::new();
+    let stats = ot.walk(|w| seen.extend_from_slice(w)).unwrap();
+    assert_eq!(seen, [0xAAAA_AAAA, 0xBBBB_BBBB]);
+    assert_eq!(stats.nodes, depth + 2);
+}
+
+/// Huge primitive buffers are cut to what 24-bit links can address instead of allocating
+/// words no node could use: 2^21 words in all.
+#[test]
+fn primitive_buffer_capped_at_link_range() {
+    let ot = OrderingTable::new(16, usize::MAX / 2).unwrap();
+    assert_eq!(ot.ram().len(), 1 << 21);
 }

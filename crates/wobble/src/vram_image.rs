@@ -99,26 +99,18 @@ fn halfword(vram: &[u16], x: usize, y: usize) -> u16 {
         .unwrap_or(0)
 }
 
-/// The display area as an image. In 24-bit mode each pixel is three bytes R, G, B read from
-/// consecutive halfwords of the line, low byte first; coordinates wrap at the VRAM edges.
+/// The display area as an image, decoded by the GPU crate ([`DisplayArea::decode`]: 15-bit
+/// or 24-bit, coordinates wrapping at the VRAM edges).
 pub fn display_image(vram: &[u16], area: DisplayArea, expand: Expand) -> RgbImage {
-    let (x0, y0) = (area.x as usize, area.y as usize);
-    RgbImage::from_fn(area.width as u32, area.height as u32, |x, y| {
-        let (x, y) = (x as usize, y0 + y as usize);
-        if area.color_24bit {
-            let byte = |k: usize| {
-                let h = halfword(vram, x0 + k / 2, y);
-                if k.is_multiple_of(2) {
-                    h as u8
-                } else {
-                    (h >> 8) as u8
-                }
-            };
-            Rgb([byte(3 * x), byte(3 * x + 1), byte(3 * x + 2)])
-        } else {
-            Rgb(expand.pixel(halfword(vram, x0 + x, y)))
-        }
-    })
+    let expand = match expand {
+        Expand::Replicate => gpu::ChannelExpand::Replicate,
+        Expand::Shift => gpu::ChannelExpand::Shift,
+    };
+    let size = area.frame_size();
+    let mut bytes = vec![0u8; size.bytes(gpu::PixelFormat::Rgb888)];
+    // The buffer is sized from the same area, so decoding cannot fail.
+    let _ = area.decode(vram, &mut bytes, gpu::PixelFormat::Rgb888, expand);
+    RgbImage::from_raw(size.width, size.height, bytes).unwrap_or_default()
 }
 
 /// A 256x256 texture page at (`page_x`, `page_y`) seen through the CLUT at (`clut_x`,

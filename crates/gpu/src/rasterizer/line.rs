@@ -18,11 +18,13 @@ pub(super) fn draw<
     const BLEND: bool,
     const DITHER: bool,
     const MASK_CHECK: bool,
+    const FILTERED: bool,
 >(
     vram: &mut [u16; VRAM_LEN],
     state: &DrawState,
     env_ref: &PixelEnv,
     line: &Line,
+    rows: super::Rows,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -69,6 +71,7 @@ pub(super) fn draw<
             && px <= area.right as i32
             && py >= area.top as i32
             && py <= area.bottom as i32
+            && (!FILTERED || rows.keeps(py))
         {
             let rgb = [color[0] >> 12, color[1] >> 12, color[2] >> 12];
             let shade = if DITHER {

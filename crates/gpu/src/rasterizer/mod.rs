@@ -160,6 +160,100 @@ pub(crate) fn fill_flat_span(
     }
 }
 
+/// The VRAM lines a primitive may write. In 480i with GP0(E1h) bit 10 clear, drawing
+/// skips the lines of the field being displayed (docs/hardware/gpu.md §8; psx-spx "GP1(08h)":
+/// the interlace flag affects GP0 drawing). Chosen once per primitive: an unfiltered
+/// primitive walks its rows as before, a filtered one walks every second row.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Rows {
+    /// Every line.
+    #[default]
+    All,
+    /// Lines whose bit 0 differs from this value (0 or 1).
+    SkipParity(u8),
+}
+
+impl Rows {
+    /// The first row at or after `y` that is drawn.
+    #[inline(always)]
+    fn first_from(parity: u8, y: i32) -> i32 {
+        if (y & 1) as u8 == parity & 1 {
+            y + 1
+        } else {
+            y
+        }
+    }
+
+    /// How many rows of `lo..hi` are drawn.
+    #[inline(always)]
+    pub(crate) fn count(self, lo: i32, hi: i32) -> u32 {
+        let mut n = 0u32;
+        if lo < hi {
+            match self {
+                Rows::All => n = (hi - lo) as u32,
+                Rows::SkipParity(p) => {
+                    let first = Self::first_from(p, lo);
+                    if first < hi {
+                        n = ((hi - first + 1) / 2) as u32;
+                    }
+                }
+            }
+        }
+        n
+    }
+
+    /// Call `f` for each drawn row of `lo..hi`, ascending.
+    #[inline(always)]
+    pub(crate) fn each(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
+        match self {
+            Rows::All => {
+                for y in lo..hi {
+                    f(y);
+                }
+            }
+            Rows::SkipParity(p) => {
+                let mut y = Self::first_from(p, lo);
+                while y < hi {
+                    f(y);
+                    y += 2;
+                }
+            }
+        }
+    }
+
+    /// Call `f` for each drawn row of `lo..hi`, descending.
+    #[inline(always)]
+    pub(crate) fn each_rev(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
+        match self {
+            Rows::All => {
+                for y in (lo..hi).rev() {
+                    f(y);
+                }
+            }
+            Rows::SkipParity(p) => {
+                // The last drawn row below `hi`.
+                let mut y = hi - 1;
+                if (y & 1) as u8 == p & 1 {
+                    y -= 1;
+                }
+                while y >= lo {
+                    f(y);
+                    y -= 2;
+                }
+            }
+        }
+    }
+
+    /// Whether row `y` is drawn.
+    #[inline(always)]
+    pub fn keeps(self, y: i32) -> bool {
+        match self {
+            Rows::All => true,
+            Rows::SkipParity(p) => (y & 1) as u8 != p & 1,
+        }
+    }
+}
+
 /// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
@@ -168,10 +262,6 @@ pub(crate) const fn wrap11(v: i32) -> i32 {
 
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
-
-fn vram_array(vram: &mut Vram) -> Option<&mut [u16; VRAM_LEN]> {
-    vram.as_mut_slice().try_into().ok()
-}
 
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
@@ -200,9 +290,18 @@ pub fn draw_triangle(
     clut: &mut ClutCache,
     tri: &Triangle,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_triangle_rows(vram, state, clut, tri, Rows::All)
+}
+
+/// [`draw_triangle`] writing only the lines `rows` keeps.
+pub fn draw_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    tri: &Triangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (g, b, d, m) = (
@@ -213,10 +312,10 @@ pub fn draw_triangle(
     );
     use triangle::draw;
     match texture_kind(tri.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, tri); [0,]; g, false, b, d, m),
-        1 => dispatch!(draw(vram, state, &env, tri); [1,]; g, raw, b, d, m),
-        2 => dispatch!(draw(vram, state, &env, tri); [2,]; g, raw, b, d, m),
-        _ => dispatch!(draw(vram, state, &env, tri); [3,]; g, raw, b, d, m),
+        0 => dispatch!(draw(vram, state, &env, tri, rows); [0,]; g, false, b, d, m),
+        1 => dispatch!(draw(vram, state, &env, tri, rows); [1,]; g, raw, b, d, m),
+        2 => dispatch!(draw(vram, state, &env, tri, rows); [2,]; g, raw, b, d, m),
+        _ => dispatch!(draw(vram, state, &env, tri, rows); [3,]; g, raw, b, d, m),
     }
 }
 
@@ -231,9 +330,7 @@ pub fn draw_triangle_precise(
     at: &[precise::PreciseVertex; 3],
     perspective: bool,
 ) {
-    let Some(vram) = vram_array(vram) else {
-        return;
-    };
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
@@ -248,9 +345,13 @@ pub fn draw_triangle_precise(
 
 /// Draw one line segment, both endpoints included (gpu.md §4). Returns the points stepped.
 pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_line_rows(vram, state, line, Rows::All)
+}
+
+/// [`draw_line`] writing only the lines `rows` keeps. Lines test each pixel's row, so the
+/// filter is a const parameter: an unfiltered line has no row test.
+pub fn draw_line_rows(vram: &mut Vram, state: &DrawState, line: &Line, rows: Rows) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -263,7 +364,8 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
         state.mask.check,
     );
     use line::draw;
-    dispatch!(draw(vram, state, &env, line); []; g, b, d, m)
+    let filtered = rows != Rows::All;
+    dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
 }
 
 /// Draw one rectangle (gpu.md §5). Returns what was drawn.
@@ -273,17 +375,26 @@ pub fn draw_rectangle(
     clut: &mut ClutCache,
     rect: &Rectangle,
 ) -> DrawCount {
-    let Some(vram) = vram_array(vram) else {
-        return DrawCount::default();
-    };
+    draw_rectangle_rows(vram, state, clut, rect, Rows::All)
+}
+
+/// [`draw_rectangle`] writing only the lines `rows` keeps.
+pub fn draw_rectangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    clut: &mut ClutCache,
+    rect: &Rectangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
     let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);
     let (b, m) = (rect.blend.is_some(), state.mask.check);
     use rectangle::draw;
     match texture_kind(rect.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, rect); [0,]; false, b, m),
-        1 => dispatch!(draw(vram, state, &env, rect); [1,]; raw, b, m),
-        2 => dispatch!(draw(vram, state, &env, rect); [2,]; raw, b, m),
-        _ => dispatch!(draw(vram, state, &env, rect); [3,]; raw, b, m),
+        0 => dispatch!(draw(vram, state, &env, rect, rows); [0,]; false, b, m),
+        1 => dispatch!(draw(vram, state, &env, rect, rows); [1,]; raw, b, m),
+        2 => dispatch!(draw(vram, state, &env, rect, rows); [2,]; raw, b, m),
+        _ => dispatch!(draw(vram, state, &env, rect, rows); [3,]; raw, b, m),
     }
 }

@@ -1,5 +1,6 @@
 //! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
-//! wrapped at 256 (decremented when flipped), clipped to the drawing area.
+//! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
+//! to the drawing area.
 
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
@@ -13,6 +14,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
+    filter: super::Rows,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -28,7 +30,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     }
     let mut row_count = DrawCount::default();
     row_count.span(x_start, x_end);
-    let rows = (y_end - y_start) as u32;
+    let rows = filter.count(y_start, y_end);
     let drawn = DrawCount {
         rows,
         pixels: row_count.pixels * rows,
@@ -38,13 +40,15 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     // Per-pixel texel steps: +1, or -1 (255 in 8-bit wrapping arithmetic) when flipped.
     let du: u8 = if rect.flip_x { 255 } else { 1 };
     let dv: u8 = if rect.flip_y { 255 } else { 1 };
+    // With the X flip the origin column samples u0 | 1, not u0 (docs/hardware/gpu.md §5).
+    let u0 = if rect.flip_x { o.u | 1 } else { o.u };
     // Texel at the first drawn column: u0 + (x_start - x0) steps.
-    let u_start = o.u.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
-    for y in y_start..y_end {
+    let u_start = u0.wrapping_add(du.wrapping_mul((x_start - x0) as u8));
+    filter.each(y_start, y_end, |y| {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
             super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
-            continue;
+            return;
         }
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));
         let mut u = u_start;
@@ -60,6 +64,6 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
             );
             u = u.wrapping_add(du);
         }
-    }
+    });
     drawn
 }

@@ -47,6 +47,7 @@ pub(super) fn draw<
     state: &DrawState,
     env: &PixelEnv,
     tri: &Triangle,
+    rows: super::Rows,
 ) -> DrawCount {
     let mut drawn = DrawCount::default();
     let mut v = tri.vertices.map(|p| Vtx {
@@ -194,27 +195,28 @@ pub(super) fn draw<
     // part top-down from b; core c, both bottom-up (from b, then from c).
     let base_start = edge_start(a.x);
     let base_at = |y: i32| base_start + (y - a.y) as i64 * base_step;
+    // Edges are evaluated per row from their start, so a row filter skips rows freely.
     if core == 0 {
         let bound = edge_start(a.x);
-        for y in a.y..b.y {
-            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step);
-        }
+        rows.each(a.y, b.y, |y| {
+            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step)
+        });
     } else {
         let bound = edge_start(b.x);
-        for y in (a.y..b.y).rev() {
-            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step);
-        }
+        rows.each_rev(a.y, b.y, |y| {
+            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step)
+        });
     }
     if core == 2 {
         let bound = edge_start(c.x);
-        for y in (b.y..c.y).rev() {
-            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step);
-        }
+        rows.each_rev(b.y, c.y, |y| {
+            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step)
+        });
     } else {
         let bound = edge_start(b.x);
-        for y in b.y..c.y {
-            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step);
-        }
+        rows.each(b.y, c.y, |y| {
+            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step)
+        });
     }
     drawn
 }

@@ -134,6 +134,7 @@ impl Renderer {
         }
         gpu.gp1(0x0500_0000 | buffer_y << 10);
         self.display = gpu.display_area();
+        self.display.width = screen.width;
         self.display.height = screen.height;
     }
 }

@@ -19,7 +19,7 @@ pub use object::{angle, object_rotation, object_transform, prepare};
 use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{InvalidScene, Scene};
-use gpu::ordering_table::OrderingTable;
+use gpu::ordering_table::{OrderingTable, OtError};
 use gpu::rasterizer::precise::PreciseVertex;
 use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
@@ -95,6 +95,8 @@ pub enum RenderError {
     Scene(InvalidScene),
     /// An accuracy knob this build does not include (built without `accuracy-knobs`).
     Unsupported(gte::UnsupportedDivideMode),
+    /// The ordering table cannot be built.
+    OrderingTable(OtError),
 }
 
 impl fmt::Display for RenderError {
@@ -103,6 +105,7 @@ impl fmt::Display for RenderError {
             RenderError::Vram(e) => write!(f, "{e}"),
             RenderError::Scene(e) => write!(f, "{e}"),
             RenderError::Unsupported(e) => write!(f, "{e}"),
+            RenderError::OrderingTable(e) => write!(f, "{e}"),
         }
     }
 }
@@ -113,6 +116,7 @@ impl std::error::Error for RenderError {
             RenderError::Vram(e) => Some(e),
             RenderError::Scene(e) => Some(e),
             RenderError::Unsupported(e) => Some(e),
+            RenderError::OrderingTable(e) => Some(e),
         }
     }
 }
@@ -261,7 +265,8 @@ impl Renderer {
             .set_divide_mode(options.divide_mode)
             .map_err(RenderError::Unsupported)?;
         Ok(Renderer {
-            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64),
+            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
+                .map_err(RenderError::OrderingTable)?,
             scratch: Vec::with_capacity(capacity),
             stack: SplitStack::default(),
             capacity,

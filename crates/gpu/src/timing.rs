@@ -1,0 +1,450 @@
+//! Video timing: the GPU (video) clock against the CPU clock, scanlines and fields, the dot
+//! clock, hblank and vblank (docs/hardware/timing.md §1-§7; `docs/gpu.md` "Video timing"
+//! lists the figures and choices).
+//!
+//! Time inside the GPU is counted in video clock cycles. The CPU-to-video ratio is kept as an
+//! exact fraction with an integer remainder, so any split of a run into calls gives the same
+//! result as one call.
+
+use crate::display::DisplayState;
+
+/// CPU clock in Hz: 44100 * 768 (docs/hardware/timing.md §1).
+pub const CPU_CLOCK_HZ: u32 = 33_868_800;
+
+/// Console region. It selects the video clock (a console runs its GPU on its own region's
+/// clock whatever GP1(08h) selects, docs/hardware/timing.md §1) and the power-on display
+/// standard; GP1(08h) bit 3 then switches the scanline timing between NTSC and PAL.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum VideoStandard {
+    /// NTSC console: video clock 11/7 of the CPU clock (53.2224 MHz), NTSC display mode at
+    /// power-on.
+    #[default]
+    Ntsc,
+    /// PAL console: 53.203425 MHz video clock, PAL display mode at power-on.
+    Pal,
+}
+
+impl VideoStandard {
+    /// The video clock in Hz. NTSC: CPU clock * 11/7 = 53,222,400, the ratio the NTSC
+    /// console of ps1-tests `timers` shows to 0.02% (psx-spx's nominal 53,693,175 is 0.9%
+    /// off that recording; docs/hardware/timing.md §1, §10). PAL: 53,203,425, psx-spx's
+    /// nominal PAL clock (no recording; 0.04% from 11/7).
+    pub const fn video_clock_hz(self) -> u32 {
+        match self {
+            VideoStandard::Ntsc => 53_222_400,
+            VideoStandard::Pal => 53_203_425,
+        }
+    }
+
+    /// Video cycles per CPU cycle as a reduced fraction (numerator, denominator).
+    pub const fn clock_ratio(self) -> (u64, u64) {
+        let (n, d) = (self.video_clock_hz() as u64, CPU_CLOCK_HZ as u64);
+        let g = gcd(n, d);
+        (n / g, d / g)
+    }
+}
+
+const fn gcd(mut a: u64, mut b: u64) -> u64 {
+    while b != 0 {
+        let t = a % b;
+        a = b;
+        b = t;
+    }
+    a
+}
+
+/// What happened during one [`crate::Gpu::run`]: counts for the timer inputs and flags for
+/// the edges an interrupt controller or timer synchronisation needs.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Events {
+    /// Dot clock ticks elapsed (timer 0 clock source). The dot divider restarts at each
+    /// scanline, so a line holds `cycles_per_line / divider` dots, rounded down
+    /// (docs/hardware/timing.md §4).
+    pub dots: u32,
+    /// Hblank starts (timer 1 clock source).
+    pub hblanks: u32,
+    /// At least one hblank started.
+    pub hblank_start: bool,
+    /// At least one hblank ended.
+    pub hblank_end: bool,
+    /// At least one vblank started (the IRQ0 source).
+    pub vblank_start: bool,
+    /// At least one vblank ended.
+    pub vblank_end: bool,
+    /// A GP0(1Fh) raised the GPU IRQ since the previous run.
+    pub gpu_irq: bool,
+    /// The GPU went from busy drawing to idle.
+    pub drawing_done: bool,
+}
+
+impl Events {
+    /// Whether anything but dot counting happened.
+    pub fn any(&self) -> bool {
+        self.hblanks != 0
+            || self.hblank_start
+            || self.hblank_end
+            || self.vblank_start
+            || self.vblank_end
+            || self.gpu_irq
+            || self.drawing_done
+    }
+
+    fn merge(&mut self, o: Events) {
+        self.dots = self.dots.saturating_add(o.dots);
+        self.hblanks = self.hblanks.saturating_add(o.hblanks);
+        self.hblank_start |= o.hblank_start;
+        self.hblank_end |= o.hblank_end;
+        self.vblank_start |= o.vblank_start;
+        self.vblank_end |= o.vblank_end;
+        self.gpu_irq |= o.gpu_irq;
+        self.drawing_done |= o.drawing_done;
+    }
+}
+
+/// Video cycles per scanline: 3413 NTSC, 3406 PAL (docs/hardware/timing.md §2).
+pub const fn cycles_per_line(pal: bool) -> u32 {
+    if pal { 3406 } else { 3413 }
+}
+
+/// Scanlines of one field. Progressive: 263 NTSC, 314 PAL. Interlaced: fields of 262.5 and
+/// 312.5 lines on average (docs/hardware/timing.md §3), modelled as whole lines with
+/// field 0 one line longer than field 1 (263/262, 313/312).
+pub const fn lines_per_field(pal: bool, interlaced: bool, field: u8) -> u32 {
+    match (pal, interlaced) {
+        (false, false) => 263,
+        (true, false) => 314,
+        (false, true) => 263 - (field & 1) as u32,
+        (true, true) => 313 - (field & 1) as u32,
+    }
+}
+
+/// Video cycles per dot for GP1(08h) bits 0-1 and 6: 256 -> 10, 320 -> 8, 368 -> 7,
+/// 512 -> 5, 640 -> 4 (docs/hardware/timing.md §4).
+pub const fn dot_divider(mode: u8) -> u32 {
+    if mode & 0x40 != 0 {
+        7
+    } else {
+        match mode & 3 {
+            0 => 10,
+            1 => 8,
+            2 => 5,
+            _ => 4,
+        }
+    }
+}
+
+/// The timing of one field as the GP1 registers set it. Event offsets are in `(0, len]`: an
+/// event at the very start of a line or field is counted as the end of the previous one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Field {
+    /// Video cycles per line.
+    line: u32,
+    /// Lines in this field.
+    lines: u32,
+    /// Video cycles per dot.
+    divider: u32,
+    /// Hblank end and start offsets in a line, when the line has both a visible and a
+    /// blanked part.
+    hblank: Option<(u32, u32)>,
+    /// Vblank end and start lines, when the field has both a visible and a blanked part.
+    vblank: Option<(u32, u32)>,
+}
+
+impl Field {
+    /// Horizontal: visible from X1 to X2 of GP1(06h) (video cycles from the line start),
+    /// both clamped to the line; the rest of the line is hblank. X1 >= X2 gives an endless
+    /// hblank (docs/hardware/timing.md §5). Vertical: visible from line Y1 to
+    /// Y2 of GP1(07h); the rest is vblank. A Y2 at or past the last line is never reached,
+    /// so vblank never starts (docs/hardware/timing.md §6: no vblank IRQ for a too large Y2).
+    fn new(display: &DisplayState, field: u8) -> Self {
+        let pal = display.mode & 0x08 != 0;
+        let interlaced = display.mode & 0x20 != 0;
+        let line = cycles_per_line(pal);
+        let lines = lines_per_field(pal, interlaced, field);
+        let x1 = (display.h_range.0 as u32).min(line);
+        let x2 = (display.h_range.1 as u32).min(line);
+        let hblank = (x1 < x2 && !(x1 == 0 && x2 == line)).then(|| (nonzero(x1, line), x2));
+        let (y1, y2) = vertical_range(display, lines);
+        let vblank = (y1 < y2 && y2 < lines).then(|| (nonzero(y1, lines), y2));
+        Self {
+            line,
+            lines,
+            divider: dot_divider(display.mode),
+            hblank,
+            vblank,
+        }
+    }
+
+    /// Video cycles in the field.
+    fn len(&self) -> u64 {
+        self.line as u64 * self.lines as u64
+    }
+
+    /// Dot ticks from the field start up to position `t`.
+    fn dots_to(&self, t: u64) -> u64 {
+        let line = self.line as u64;
+        let div = self.divider as u64;
+        (t / line) * (line / div) + (t % line) / div
+    }
+
+    /// How many of the positions `k * line + offset` (k in 0..lines) lie in `(p, q]`.
+    fn count_per_line(&self, offset: u32, p: u64, q: u64) -> u64 {
+        let line = self.line as u64;
+        let first = self.next_per_line_index(offset, p);
+        let off = offset as u64;
+        if q < off {
+            return 0;
+        }
+        let last = ((q - off) / line).min(self.lines as u64 - 1);
+        (last + 1).saturating_sub(first)
+    }
+
+    /// Index k of the first position `k * line + offset` after `p`.
+    fn next_per_line_index(&self, offset: u32, p: u64) -> u64 {
+        let off = offset as u64;
+        if p < off {
+            0
+        } else {
+            (p - off) / self.line as u64 + 1
+        }
+    }
+
+    /// The events of positions in `(p, q]`.
+    fn events(&self, p: u64, q: u64) -> Events {
+        let mut e = Events {
+            dots: (self.dots_to(q) - self.dots_to(p)).min(u32::MAX as u64) as u32,
+            ..Events::default()
+        };
+        if let Some((end, start)) = self.hblank {
+            let starts = self.count_per_line(start, p, q);
+            e.hblanks = starts.min(u32::MAX as u64) as u32;
+            e.hblank_start = starts != 0;
+            e.hblank_end = self.count_per_line(end, p, q) != 0;
+        }
+        if let Some((end, start)) = self.vblank {
+            let at = |l: u32| {
+                let t = l as u64 * self.line as u64;
+                p < t && t <= q
+            };
+            e.vblank_start = at(start);
+            e.vblank_end = at(end);
+        }
+        e
+    }
+
+    /// The first event position after `p` in this field.
+    fn next_event(&self, p: u64) -> Option<u64> {
+        let mut best: Option<u64> = None;
+        let mut consider = |t: u64| {
+            if t > p && t <= self.len() {
+                best = Some(best.map_or(t, |b| b.min(t)));
+            }
+        };
+        if let Some((end, start)) = self.hblank {
+            for off in [end, start] {
+                let k = self.next_per_line_index(off, p);
+                consider(k * self.line as u64 + off as u64);
+            }
+        }
+        if let Some((end, start)) = self.vblank {
+            consider(end as u64 * self.line as u64);
+            consider(start as u64 * self.line as u64);
+        }
+        best
+    }
+}
+
+/// GP1(07h) Y1, Y2 as the field sees them: Y1 clamped to the field; a Y2 at or past the
+/// last line is never reached (no vblank), marked as Y2 = `lines`.
+fn vertical_range(display: &DisplayState, lines: u32) -> (u32, u32) {
+    let y1 = (display.v_range.0 as u32).min(lines);
+    let y2 = (display.v_range.1 as u32).min(lines);
+    (y1, y2)
+}
+
+/// An offset of 0 is the same instant as `len`, the end of the previous line or field.
+fn nonzero(v: u32, len: u32) -> u32 {
+    if v == 0 { len } else { v }
+}
+
+/// The video timing counters. All state is here, so saving it saves the timing.
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Timing {
+    /// Console region (video clock).
+    standard: VideoStandard,
+    /// CPU-to-video conversion remainder, in CPU cycles times the ratio numerator; always
+    /// below the ratio denominator.
+    remainder: u64,
+    /// Video cycles elapsed in the current field.
+    position: u64,
+    /// Current field: 0 shows the display start line and every second line after it, 1
+    /// the lines between. Alternates only while interlaced.
+    field: u8,
+}
+
+impl Timing {
+    pub(crate) fn new(standard: VideoStandard) -> Self {
+        Self {
+            standard,
+            remainder: 0,
+            position: 0,
+            field: 0,
+        }
+    }
+
+    pub(crate) fn standard(&self) -> VideoStandard {
+        self.standard
+    }
+
+    /// The current field (0 or 1).
+    pub(crate) fn field(&self) -> u8 {
+        self.field
+    }
+
+    /// The current scanline within the field, and the video cycle within that line.
+    pub(crate) fn beam(&self, display: &DisplayState) -> (u32, u32) {
+        let f = Field::new(display, self.field);
+        let p = self.position.min(f.len().saturating_sub(1));
+        ((p / f.line as u64) as u32, (p % f.line as u64) as u32)
+    }
+
+    /// Whether the current line is outside the GP1(07h) vertical range.
+    pub(crate) fn in_vblank(&self, display: &DisplayState) -> bool {
+        let (line, _) = self.beam(display);
+        let f = Field::new(display, self.field);
+        let (y1, y2) = vertical_range(display, f.lines);
+        if y2 >= f.lines {
+            return false;
+        }
+        !(y1 <= line && line < y2)
+    }
+
+    /// The visible line count since the top of the display range (only meaningful outside
+    /// vblank).
+    pub(crate) fn display_line(&self, display: &DisplayState) -> u32 {
+        let (line, _) = self.beam(display);
+        line.saturating_sub(display.v_range.0 as u32)
+    }
+
+    /// Video cycles for `cpu_cycles` CPU cycles, carrying the remainder.
+    pub(crate) fn convert(&mut self, cpu_cycles: u32) -> u64 {
+        let (num, den) = self.standard.clock_ratio();
+        let total = cpu_cycles as u64 * num + self.remainder;
+        self.remainder = total % den;
+        total / den
+    }
+
+    /// CPU cycles needed for at least `video` more video cycles, from the current remainder.
+    pub(crate) fn cpu_cycles_for(&self, video: u64) -> u32 {
+        let (num, den) = self.standard.clock_ratio();
+        let need = (video as u128 * den as u128).saturating_sub(self.remainder as u128);
+        let cpu = need.div_ceil(num as u128);
+        cpu.min(u32::MAX as u128) as u32
+    }
+
+    /// A mode change can leave the position past the end of a now shorter field: the field
+    /// then ends at once, without events.
+    fn normalise(&mut self, display: &DisplayState) {
+        let f = Field::new(display, self.field);
+        if self.position >= f.len() {
+            self.position = 0;
+            self.next_field(display);
+        }
+    }
+
+    fn next_field(&mut self, display: &DisplayState) {
+        if display.mode & 0x20 != 0 {
+            self.field ^= 1;
+        } else {
+            self.field = 0;
+        }
+    }
+
+    /// Advance by `video` video cycles.
+    pub(crate) fn advance(&mut self, mut video: u64, display: &DisplayState) -> Events {
+        self.normalise(display);
+        let mut events = Events::default();
+        while video > 0 {
+            let f = Field::new(display, self.field);
+            let p = self.position;
+            let step = video.min(f.len() - p);
+            events.merge(f.events(p, p + step));
+            video -= step;
+            self.position = p + step;
+            if self.position >= f.len() {
+                self.position = 0;
+                self.next_field(display);
+            }
+        }
+        events
+    }
+
+    /// CPU cycles until [`Timing::advance`] would report an hblank or vblank edge, or
+    /// `u32::MAX` when none comes (endless hblank and no vblank edge).
+    pub(crate) fn cycles_until_next_event(&self, display: &DisplayState) -> u32 {
+        let mut t = *self;
+        t.normalise(display);
+        let f = Field::new(display, t.field);
+        let video = match f.next_event(t.position) {
+            Some(at) => at - t.position,
+            None => {
+                let mut next = t;
+                next.position = 0;
+                next.next_field(display);
+                let g = Field::new(display, next.field);
+                match g.next_event(0) {
+                    Some(at) => f.len() - t.position + at,
+                    None => return u32::MAX,
+                }
+            }
+        };
+        t.cpu_cycles_for(video)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn display(mode: u8) -> DisplayState {
+        DisplayState {
+            mode,
+            ..DisplayState::default()
+        }
+    }
+
+    #[test]
+    fn dots_per_line_are_the_published_figures_rounded_down() {
+        // psx-spx "GPU Timings" dots per scanline, fractions dropped (its note: the timer
+        // ignores the fraction; it names 425.75 (PAL 320) as rounded up, which the model
+        // does not do: see docs/gpu.md "Video timing").
+        let cases = [
+            (0x00, 341, 340),
+            (0x01, 426, 425),
+            (0x40, 487, 486),
+            (0x02, 682, 681),
+            (0x03, 853, 851),
+        ];
+        for (mode, ntsc, pal) in cases {
+            for (pal_bit, expected, line) in [(0, ntsc, 3413u64), (0x08, pal, 3406)] {
+                let d = display(mode | pal_bit);
+                let mut t = Timing::new(VideoStandard::Ntsc);
+                for l in 0..5u32 {
+                    let e = t.advance(line, &d);
+                    assert_eq!(e.dots, expected, "mode {mode:#x} pal {pal_bit} line {l}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn clock_ratios_are_reduced_exactly() {
+        assert_eq!(VideoStandard::Ntsc.clock_ratio(), (11, 7));
+        assert_eq!(VideoStandard::Pal.clock_ratio(), (709_379, 451_584));
+        // 451584 * 75 = 33868800; 709379 * 75 = 53203425.
+        assert_eq!(451_584 * 75, CPU_CLOCK_HZ as u64);
+    }
+}
