@@ -97,8 +97,11 @@ fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
     }
 }
 
+/// Screen positions, screen Z and IR0 of a polygon to be drawn.
+type Drawn = ([(i16, i16); 4], [u16; 4], I4F12);
+
 /// Counts a polygon that is not drawn; returns the positions, screen Z and IR0 of one that is.
-fn drawn(verdict: Verdict, stats: &mut FrameStats) -> Option<([(i16, i16); 4], [u16; 4], I4F12)> {
+fn drawn(verdict: Verdict, stats: &mut FrameStats) -> Option<Drawn> {
     match verdict {
         Verdict::Drop => stats.dropped += 1,
         Verdict::Cull => stats.culled += 1,
