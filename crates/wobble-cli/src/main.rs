@@ -1,5 +1,8 @@
 //! `wobble`: render scenes the PS1 way, replay GTE vectors and GPU command streams, dump VRAM.
 
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
+
 use clap::{Parser, Subcommand, ValueEnum};
 use gpu::{DisplayArea, Gpu, command_stream};
 use std::path::{Path, PathBuf};

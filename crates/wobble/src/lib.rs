@@ -3,11 +3,14 @@
 //! - [`scene`]: scene files and validation, meshes, textures and their palettes, VRAM
 //!   placement, the built-in scene;
 //! - [`pipeline`]: the PS1 renderer, GTE stage -> ordering-table stage -> GPU submission;
-//! - [`reference`]: the f64 reference renderer the PS1 output is measured against;
+//! - [`reference`](mod@reference): the f64 reference renderer the PS1 output is measured against;
 //! - [`trade`]: the accuracy/cost trade report;
 //! - [`gte_vectors`]: replay of GTE test vectors;
 //! - [`vram_image`]: VRAM to images and the raw VRAM file format;
 //! - [`inspect`]: the draw-by-draw report of a command stream or a rendered frame.
+
+#![forbid(unsafe_code)]
+#![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 pub mod gte_vectors;
 pub mod inspect;

@@ -8,7 +8,8 @@ use super::tessellate::PreparedFace;
 use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
 use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
-use gte::typed::{Geometry, I8F8, I8F24, I16F16, Matrix, Projection};
+use gte::Flag;
+use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection};
 
 /// A polygon after the GTE stage, waiting for its packet.
 #[derive(Clone, Copy, Debug, Default)]
@@ -22,23 +23,172 @@ pub(super) struct ProjectedFace {
     pub(super) blend: Option<u8>,
 }
 
-/// RTPT (and RTPS for a quad's fourth vertex), NCLIP, and the whole-polygon tests.
-fn transform(g: &mut Geometry, face: &PreparedFace, screen: (i32, i32)) -> Verdict {
+/// A polygon's vertices after RTPT/RTPS and NCLIP, before the clip verdict.
+struct Transformed {
+    flag: Flag,
+    area: i32,
+    xy: [(i16, i16); 4],
+    sz: [u16; 4],
+    ir0: I4F12,
+    /// Screen positions in 1/16 pixel from the 16.16 values before truncation
+    /// (docs/hardware/gte.md §5 step 6), when the sub-pixel knob is on.
+    fine: Option<[(i32, i32); 4]>,
+}
+
+/// RTPT (and RTPS for a quad's fourth vertex) and NCLIP; with `subpixel`, one RTPS per
+/// vertex instead, keeping each vertex's 16.16 screen position. Three RTPS leave the same
+/// SXY/SZ FIFOs, IR0 and FLAG (ORed over the commands) as one RTPT (docs/hardware/gte.md §5).
+fn transform(g: &mut Geometry, face: &PreparedFace, subpixel: bool) -> Transformed {
     let v = &face.v;
+    let n = if face.quad { 4 } else { 3 };
+    if subpixel {
+        let mut t = Transformed {
+            flag: Flag::default(),
+            area: 0,
+            xy: [(0, 0); 4],
+            sz: [0; 4],
+            ir0: I4F12::ZERO,
+            fine: None,
+        };
+        let mut fine = [(0, 0); 4];
+        for k in 0..n {
+            let s = g.project_subpixel(v[k].position);
+            let p = s.projected;
+            t.flag = t.flag.union(p.flag);
+            t.xy[k] = (p.x, p.y);
+            t.sz[k] = p.sz;
+            t.ir0 = p.ir0;
+            fine[k] = (
+                s.x.to_bits() >> (16 - SUBPIXEL_BITS),
+                s.y.to_bits() >> (16 - SUBPIXEL_BITS),
+            );
+            if k == 2 {
+                t.area = g.nclip_current();
+            }
+        }
+        t.fine = Some(fine);
+        return t;
+    }
     let p = g.project_triangle([v[0].position, v[1].position, v[2].position]);
-    let mut flag = p.flag;
     let area = g.nclip_current();
-    let mut xy = [p.xy[0], p.xy[1], p.xy[2], (0, 0)];
-    let mut sz = [p.sz[0], p.sz[1], p.sz[2], 0];
-    let mut ir0 = p.ir0;
+    let mut t = Transformed {
+        flag: p.flag,
+        area,
+        xy: [p.xy[0], p.xy[1], p.xy[2], (0, 0)],
+        sz: [p.sz[0], p.sz[1], p.sz[2], 0],
+        ir0: p.ir0,
+        fine: None,
+    };
     if face.quad {
         let q = g.project(v[3].position);
-        flag = flag.union(q.flag);
-        xy[3] = (q.x, q.y);
-        sz[3] = q.sz;
-        ir0 = q.ir0;
+        t.flag = t.flag.union(q.flag);
+        t.xy[3] = (q.x, q.y);
+        t.sz[3] = q.sz;
+        t.ir0 = q.ir0;
     }
-    classify(flag, area, xy, sz, ir0, face.quad, screen)
+    t
+}
+
+/// Whether a polygon is split again rather than drawn, given its verdict.
+fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
+    match verdict {
+        Verdict::Drop(_) => true,
+        Verdict::Draw { extent, .. } => *extent > split_extent,
+        Verdict::Cull | Verdict::Offscreen => false,
+    }
+}
+
+/// Screen positions, screen Z and IR0 of a polygon to be drawn.
+type Drawn = ([(i16, i16); 4], [u16; 4], I4F12);
+
+/// Counts a polygon that is not drawn; returns the positions, screen Z and IR0 of one that is.
+fn drawn(verdict: Verdict, stats: &mut FrameStats) -> Option<Drawn> {
+    match verdict {
+        Verdict::Drop(_) => stats.dropped += 1,
+        Verdict::Cull => stats.culled += 1,
+        Verdict::Offscreen => stats.offscreen += 1,
+        Verdict::Draw { xy, sz, ir0, .. } => return Some((xy, sz, ir0)),
+    }
+    None
+}
+
+/// Vertex colours: NCCT/NCCS with a light, NCDT/NCDS with light and fog, DPCS with fog only.
+fn light(
+    g: &mut Geometry,
+    (lit, fogged): (bool, bool),
+    face: &PreparedFace,
+    base: [u8; 3],
+    ir0: I4F12,
+) -> [[u8; 3]; 4] {
+    let v = &face.v;
+    let mut color = [base; 4];
+    let normals = [v[0].normal, v[1].normal, v[2].normal];
+    match (lit, fogged) {
+        (true, false) => {
+            let c = g.normal_color_color_triple(normals, base);
+            color[..3].copy_from_slice(&c);
+            if face.quad {
+                color[3] = g.normal_color_color(v[3].normal, base);
+            }
+        }
+        // NCDT/NCDS fade by IR0 as the last RTPT/RTPS left it: one factor
+        // for the whole polygon, from its last vertex (gte.md §5 step 7).
+        (true, true) => {
+            let c = g.normal_color_depth_triple(normals, base);
+            color[..3].copy_from_slice(&c);
+            if face.quad {
+                color[3] = g.normal_color_depth(v[3].normal, base);
+            }
+        }
+        (false, true) => color = [g.depth_cue(base, ir0); 4],
+        (false, false) => {}
+    }
+    color
+}
+
+/// The precise rasterizer's vertices: whole-pixel or sub-pixel positions and 1/Z.
+fn precise_vertices_of(
+    xy: [(i16, i16); 4],
+    sz: [u16; 4],
+    fine: Option<[(i32, i32); 4]>,
+    quad: bool,
+) -> [PreciseVertex; 4] {
+    let whole = xy.map(|(x, y)| (i32::from(x) << SUBPIXEL_BITS, i32::from(y) << SUBPIXEL_BITS));
+    let positions = fine.unwrap_or(whole);
+    let n = if quad { 4 } else { 3 };
+    let mut precise = [PreciseVertex::default(); 4];
+    for k in 0..n {
+        precise[k] = PreciseVertex {
+            x: positions[k].0,
+            y: positions[k].1,
+            inv_z: (1u32 << 24) / u32::from(sz[k]).max(1),
+        };
+    }
+    precise
+}
+
+/// AVSZ3/AVSZ4 for the ordering-table index, and the polygon as the packet stage takes it.
+fn emit(
+    g: &mut Geometry,
+    face: &PreparedFace,
+    (xy, sz): ([(i16, i16); 4], [u16; 4]),
+    color: [[u8; 3]; 4],
+    (texture, blend): (Option<(u32, u32)>, Option<u8>),
+) -> ProjectedFace {
+    let otz = if face.quad {
+        g.average_z4(sz)
+    } else {
+        g.average_z3([sz[0], sz[1], sz[2]])
+    };
+    ProjectedFace {
+        xy,
+        color,
+        uv: face.v.map(|p| p.texel()),
+        quad: face.quad,
+        ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
+        texture,
+        blend,
+    }
 }
 
 impl Renderer {
@@ -55,6 +205,7 @@ impl Renderer {
         let capacity = self.capacity;
         let split_extent = i32::from(self.options.split_extent);
         let options = self.options;
+        let lighting = (scene.light.is_some(), scene.fog.is_some());
         let (dqa, dqb) = scene
             .fog
             .and_then(|f| f.coefficients(cam.h))
@@ -110,14 +261,10 @@ impl Renderer {
             for (face_index, face) in prepared.faces.iter().enumerate() {
                 stack.push(*face, 0);
                 while let Some((face, level)) = stack.pop() {
-                    let verdict = transform(g, &face, (w, h));
-                    let split = level < prepared.level
-                        && match verdict {
-                            Verdict::Drop(_) => true,
-                            Verdict::Draw { extent, .. } => extent > split_extent,
-                            Verdict::Cull | Verdict::Offscreen => false,
-                        };
-                    if let Some(t) = trace.as_deref_mut() {
+                    let t = transform(g, &face, options.subpixel);
+                    let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
+                    let split = level < prepared.level && needs_split(&verdict, split_extent);
+                    if let Some(tr) = trace.as_deref_mut() {
                         let fate = match verdict {
                             _ if split => FaceFate::Split,
                             Verdict::Drop(c) => FaceFate::Dropped(c),
@@ -127,7 +274,7 @@ impl Renderer {
                             // The slot is filled in below.
                             Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
                         };
-                        t.faces.push(FaceRecord {
+                        tr.faces.push(FaceRecord {
                             object: object_index,
                             face: face_index,
                             level,
@@ -139,100 +286,89 @@ impl Renderer {
                         continue;
                     }
                     stats.polygons += 1;
-                    let (xy, sz, ir0) = match verdict {
-                        Verdict::Drop(_) => {
-                            stats.dropped += 1;
-                            continue;
-                        }
-                        Verdict::Cull => {
-                            stats.culled += 1;
-                            continue;
-                        }
-                        Verdict::Offscreen => {
-                            stats.offscreen += 1;
-                            continue;
-                        }
-                        Verdict::Draw { xy, sz, ir0, .. } => (xy, sz, ir0),
+                    let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
+                        continue;
                     };
                     if scratch.len() >= capacity {
                         stats.dropped += 1;
                         continue;
                     }
-                    let v = &face.v;
-                    let mut color = [object.color; 4];
-                    let normals = [v[0].normal, v[1].normal, v[2].normal];
-                    match (scene.light.is_some(), scene.fog.is_some()) {
-                        (true, false) => {
-                            let c = g.normal_color_color_triple(normals, object.color);
-                            color[..3].copy_from_slice(&c);
-                            if face.quad {
-                                color[3] = g.normal_color_color(v[3].normal, object.color);
-                            }
-                        }
-                        // NCDT/NCDS fade by IR0 as the last RTPT/RTPS left it: one factor
-                        // for the whole polygon, from its last vertex (gte.md §5 step 7).
-                        (true, true) => {
-                            let c = g.normal_color_depth_triple(normals, object.color);
-                            color[..3].copy_from_slice(&c);
-                            if face.quad {
-                                color[3] = g.normal_color_depth(v[3].normal, object.color);
-                            }
-                        }
-                        (false, true) => color = [g.depth_cue(object.color, ir0); 4],
-                        (false, false) => {}
-                    }
-                    let otz = if face.quad {
-                        g.average_z4(sz)
-                    } else {
-                        g.average_z3([sz[0], sz[1], sz[2]])
-                    };
+                    let color = light(g, lighting, &face, object.color, ir0);
                     if options.precise() {
-                        let mut precise = [PreciseVertex::default(); 4];
-                        let n = if face.quad { 4 } else { 3 };
-                        for k in 0..n {
-                            let (mut x, mut y) = (
-                                (xy[k].0 as i32) << SUBPIXEL_BITS,
-                                (xy[k].1 as i32) << SUBPIXEL_BITS,
-                            );
-                            if options.subpixel {
-                                // The GTE's screen position before truncation: q*IR + OF
-                                // in 16.16, kept to 1/16 pixel.
-                                let q = g.project(v[k].position);
-                                let ir1 = g.gte().read_data(9) as i32 as i64;
-                                let ir2 = g.gte().read_data(10) as i32 as i64;
-                                let (qd, _) = gte::unr::divide(options.divide_mode, cam.h, q.sz);
-                                let fx = qd as i64 * ir1 + ((w as i64 / 2) << 16);
-                                let fy = qd as i64 * ir2 + ((h as i64 / 2) << 16);
-                                let limit = 0x400i64 << SUBPIXEL_BITS;
-                                x = (fx >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
-                                y = (fy >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
-                            }
-                            precise[k] = PreciseVertex {
-                                x,
-                                y,
-                                inv_z: (1u32 << 24) / (sz[k] as u32).max(1),
+                        precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
+                    }
+                    let projected = emit(g, &face, (xy, sz), color, (texture, blend));
+                    if let Some(tr) = trace.as_deref_mut() {
+                        let record = tr.faces.len().saturating_sub(1);
+                        if let Some(r) = tr.faces.last_mut() {
+                            r.fate = FaceFate::Drawn {
+                                ot_slot: projected.ot_index,
                             };
                         }
-                        precise_vertices.push(precise);
+                        tr.scratch_face.push(record);
                     }
-                    let ot_index = ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16;
-                    if let Some(t) = trace.as_deref_mut() {
-                        let record = t.faces.len().saturating_sub(1);
-                        if let Some(r) = t.faces.last_mut() {
-                            r.fate = FaceFate::Drawn { ot_slot: ot_index };
-                        }
-                        t.scratch_face.push(record);
-                    }
-                    scratch.push(ProjectedFace {
-                        xy,
-                        color,
-                        uv: v.map(|p| p.texel()),
-                        quad: face.quad,
-                        ot_index,
-                        texture,
-                        blend,
-                    });
+                    scratch.push(projected);
                 }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tessellate::PreparedVertex;
+    use super::*;
+    use gte::typed::{Translation, Vector3};
+    use proptest::prelude::*;
+
+    fn vertex() -> impl Strategy<Value = Vector3> {
+        (-2000i16..2000, -2000i16..2000, -2000i16..2000).prop_map(|(x, y, z)| Vector3 { x, y, z })
+    }
+
+    proptest! {
+        /// One RTPS per vertex leaves the clip verdict's inputs as RTPT (+ RTPS) does, and its
+        /// sub-pixel positions are q * IR + OF (docs/hardware/gte.md §5 step 6) computed here
+        /// from a separate RTPS per vertex, in 1/16 pixel, saturated to -400h..3FFh.
+        #[test]
+        fn one_rtps_per_vertex_matches_rtpt(
+            v in proptest::array::uniform4(vertex()),
+            quad in any::<bool>(),
+            angles in (0i32..4096, 0i32..4096, 0i32..4096),
+            tz in -500i32..8000,
+            h in 100u16..1000,
+        ) {
+            let mut g = Geometry::new();
+            g.set_projection(&Projection {
+                offset_x: I16F16::from_num(160),
+                offset_y: I16F16::from_num(120),
+                h,
+                ..Projection::default()
+            });
+            g.set_rotation(&Matrix::rotation(angles.0, angles.1, angles.2));
+            g.set_translation(Translation { x: 0, y: 0, z: tz });
+            let face = PreparedFace {
+                v: v.map(|position| PreparedVertex { position, ..PreparedVertex::default() }),
+                quad,
+            };
+            let fast = transform(&mut g, &face, false);
+            let fine = transform(&mut g, &face, true);
+            prop_assert_eq!(fast.flag, fine.flag);
+            prop_assert_eq!(fast.area, fine.area);
+            prop_assert_eq!(fast.xy, fine.xy);
+            prop_assert_eq!(fast.sz, fine.sz);
+            prop_assert_eq!(fast.ir0, fine.ir0);
+            let positions = fine.fine.unwrap_or_default();
+            let n = if quad { 4 } else { 3 };
+            for k in 0..n {
+                let q = g.project(v[k]);
+                let ir1 = i64::from(g.gte().read_data(9) as i32);
+                let ir2 = i64::from(g.gte().read_data(10) as i32);
+                let (qd, _) = gte::unr::divide(gte::DivideMode::default(), h, q.sz);
+                let limit = 0x400i64 << SUBPIXEL_BITS;
+                let to_sixteenth = |f: i64| (f >> (16 - SUBPIXEL_BITS)).clamp(-limit, limit - 1) as i32;
+                let x = to_sixteenth(i64::from(qd) * ir1 + (160 << 16));
+                let y = to_sixteenth(i64::from(qd) * ir2 + (120 << 16));
+                prop_assert_eq!(positions[k], (x, y));
             }
         }
     }

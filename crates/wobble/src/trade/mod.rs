@@ -13,9 +13,110 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// The knob a report row turns, relative to the hardware-exact configuration.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Knob {
+    /// No knob: UNR divide, snapped vertices, affine UVs, dithering, no tessellation.
+    #[default]
+    Hardware,
+    /// Exact integer division instead of the UNR divide.
+    DivideExact,
+    /// `f32` division instead of the UNR divide.
+    DivideF32,
+    /// Dithering off.
+    DitherOff,
+    /// Sub-pixel vertex positions (not hardware).
+    Subpixel,
+    /// Perspective-correct texture coordinates (not hardware).
+    PerspectiveUv,
+    /// Sub-pixel vertices and perspective-correct texture coordinates (not hardware).
+    SubpixelPerspective,
+    /// Tessellation to this level.
+    Tessellation(u8),
+}
+
+impl Knob {
+    /// Every row of the report, in report order: the hardware-exact configuration first.
+    pub const ALL: [Knob; 11] = [
+        Knob::Hardware,
+        Knob::DivideExact,
+        Knob::DivideF32,
+        Knob::DitherOff,
+        Knob::Subpixel,
+        Knob::PerspectiveUv,
+        Knob::SubpixelPerspective,
+        Knob::Tessellation(1),
+        Knob::Tessellation(2),
+        Knob::Tessellation(3),
+        Knob::Tessellation(4),
+    ];
+
+    /// The row's label in the report.
+    pub fn label(self) -> &'static str {
+        match self {
+            Knob::Hardware => "hardware (UNR, snapped, affine, dither, tess 0)",
+            Knob::DivideExact => "divide: exact",
+            Knob::DivideF32 => "divide: f32",
+            Knob::DitherOff => "dithering off",
+            Knob::Subpixel => "sub-pixel vertices (non-hardware)",
+            Knob::PerspectiveUv => "perspective-correct UVs (non-hardware)",
+            Knob::SubpixelPerspective => "sub-pixel + perspective (non-hardware)",
+            Knob::Tessellation(1) => "tessellation 1",
+            Knob::Tessellation(2) => "tessellation 2",
+            Knob::Tessellation(3) => "tessellation 3",
+            Knob::Tessellation(4) => "tessellation 4",
+            Knob::Tessellation(_) => "tessellation",
+        }
+    }
+
+    /// The pipeline options of the row.
+    pub fn options(self) -> PipelineOptions {
+        let hw = PipelineOptions::default();
+        match self {
+            Knob::Hardware => hw,
+            Knob::DivideExact => PipelineOptions {
+                divide_mode: DivideMode::Exact,
+                ..hw
+            },
+            Knob::DivideF32 => PipelineOptions {
+                divide_mode: DivideMode::F32,
+                ..hw
+            },
+            Knob::DitherOff => PipelineOptions {
+                dither: Some(false),
+                ..hw
+            },
+            Knob::Subpixel => PipelineOptions {
+                subpixel: true,
+                ..hw
+            },
+            Knob::PerspectiveUv => PipelineOptions {
+                perspective_uv: true,
+                ..hw
+            },
+            Knob::SubpixelPerspective => PipelineOptions {
+                subpixel: true,
+                perspective_uv: true,
+                ..hw
+            },
+            Knob::Tessellation(level) => PipelineOptions {
+                tessellation: Some(level),
+                ..hw
+            },
+        }
+    }
+
+    /// Whether the row belongs on the tessellation curve (level 0 is the hardware row).
+    fn on_tessellation_curve(self) -> bool {
+        matches!(self, Knob::Hardware | Knob::Tessellation(_))
+    }
+}
+
 /// One configuration of the knobs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Config {
+    /// The knob the row turns.
+    pub knob: Knob,
     /// Row label.
     pub name: &'static str,
     /// Pipeline knobs.
@@ -24,76 +125,21 @@ pub struct Config {
 
 /// The rows of the report: the hardware-exact configuration first.
 pub fn configs() -> Vec<Config> {
-    let hw = PipelineOptions::default();
-    let mut rows = vec![
-        Config {
-            name: "hardware (UNR, snapped, affine, dither, tess 0)",
-            options: hw,
-        },
-        Config {
-            name: "divide: exact",
-            options: PipelineOptions {
-                divide_mode: DivideMode::Exact,
-                ..hw
-            },
-        },
-        Config {
-            name: "divide: f32",
-            options: PipelineOptions {
-                divide_mode: DivideMode::F32,
-                ..hw
-            },
-        },
-        Config {
-            name: "dithering off",
-            options: PipelineOptions {
-                dither: Some(false),
-                ..hw
-            },
-        },
-        Config {
-            name: "sub-pixel vertices (non-hardware)",
-            options: PipelineOptions {
-                subpixel: true,
-                ..hw
-            },
-        },
-        Config {
-            name: "perspective-correct UVs (non-hardware)",
-            options: PipelineOptions {
-                perspective_uv: true,
-                ..hw
-            },
-        },
-        Config {
-            name: "sub-pixel + perspective (non-hardware)",
-            options: PipelineOptions {
-                subpixel: true,
-                perspective_uv: true,
-                ..hw
-            },
-        },
-    ];
-    for (level, name) in [
-        (1, "tessellation 1"),
-        (2, "tessellation 2"),
-        (3, "tessellation 3"),
-        (4, "tessellation 4"),
-    ] {
-        rows.push(Config {
-            name,
-            options: PipelineOptions {
-                tessellation: Some(level),
-                ..hw
-            },
-        });
-    }
-    rows
+    Knob::ALL
+        .iter()
+        .map(|&knob| Config {
+            knob,
+            name: knob.label(),
+            options: knob.options(),
+        })
+        .collect()
 }
 
 /// Measured figures of one configuration.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Row {
+    /// The knob the row turns.
+    pub knob: Knob,
     /// Label.
     pub name: String,
     /// Median time per frame, milliseconds.
@@ -278,7 +324,7 @@ pub fn vertex_jitter(scene: &Scene, mode: DivideMode, subpixel: bool, frames: u3
             let mut hw = Vec::with_capacity(vertices.len());
             let mut rf = Vec::with_capacity(vertices.len());
             for vertex in &vertices {
-                let q = g.project(*vertex);
+                let q = g.project_subpixel(*vertex);
                 let p = [vertex.x as f64, vertex.y as f64, vertex.z as f64];
                 let world: [f64; 3] =
                     std::array::from_fn(|r| (0..3).map(|c| rot[r][c] * p[c]).sum::<f64>() + rel[r]);
@@ -288,18 +334,13 @@ pub fn vertex_jitter(scene: &Scene, mode: DivideMode, subpixel: bool, frames: u3
                 let sx = w / 2.0 + hp * cam[0] / cam[2];
                 let sy = h / 2.0 + hp * cam[1] / cam[2];
                 let on_screen = visible && (0.0..w).contains(&sx) && (0.0..h).contains(&sy);
-                let snapped = (q.x as f64, q.y as f64);
+                // The GTE's 16.16 screen position before truncation, saturated to
+                // -400h..3FFh.FFFFh: only positions whose reference lies on the screen count,
+                // and those are well inside that range, so the saturation never applies.
                 let position = if subpixel {
-                    // The GTE's 16.16 screen position before truncation.
-                    let (qd, _) = gte::unr::divide(mode, scene.camera.h, q.sz);
-                    let ir1 = g.gte().read_data(9) as i32 as f64;
-                    let ir2 = g.gte().read_data(10) as i32 as f64;
-                    (
-                        w / 2.0 + qd as f64 * ir1 / 65536.0,
-                        h / 2.0 + qd as f64 * ir2 / 65536.0,
-                    )
+                    (q.x.to_num::<f64>(), q.y.to_num::<f64>())
                 } else {
-                    snapped
+                    (f64::from(q.projected.x), f64::from(q.projected.y))
                 };
                 hw.push(on_screen.then_some(position));
                 rf.push(on_screen.then_some((sx, sy)));
@@ -483,6 +524,7 @@ pub fn measure(
         };
         let texel_max = errors.iter().copied().fold(0.0, f64::max);
         rows.push(Row {
+            knob: config.knob,
             name: config.name.to_string(),
             frame_ms,
             ratio: if baseline_ms > 0.0 {
@@ -701,7 +743,7 @@ pub fn write_report(
     }
     let curve: Vec<(f64, f64)> = rows
         .iter()
-        .filter(|r| r.name.starts_with("hardware") || r.name.starts_with("tessellation"))
+        .filter(|r| r.knob.on_tessellation_curve())
         .map(|r| (r.frame_ms, r.texel_mean))
         .collect();
     save(&curve_image(&curve), "tessellation-curve.png")?;
@@ -784,10 +826,7 @@ pub fn write_report(
          texel error from 0; one dot per level joined in level order 0 to 4; tick labels in those units):\n"
     );
     let _ = writeln!(md, "![tessellation curve](trade/tessellation-curve.png)\n");
-    for r in rows
-        .iter()
-        .filter(|r| r.name.starts_with("hardware") || r.name.starts_with("tessellation"))
-    {
+    for r in rows.iter().filter(|r| r.knob.on_tessellation_curve()) {
         let _ = writeln!(
             md,
             "- {}: {:.3} ms, mean texel error {:.3}",
@@ -817,7 +856,7 @@ pub fn write_report(
     }
     let tess: Vec<&Row> = rows
         .iter()
-        .filter(|r| r.name.starts_with("tessellation"))
+        .filter(|r| matches!(r.knob, Knob::Tessellation(_)))
         .collect();
     let base = &rows[0];
     let _ = writeln!(md, "\n## Conclusion\n");
@@ -829,9 +868,9 @@ pub fn write_report(
 
 /// A short conclusion drawn from the figures.
 fn conclusion(base: &Row, rows: &[Row], tess: &[&Row]) -> String {
-    let find = |n: &str| rows.iter().find(|r| r.name == n);
+    let find = |k: Knob| rows.iter().find(|r| r.knob == k);
     let mut out = String::new();
-    if let (Some(e), Some(f)) = (find("divide: exact"), find("divide: f32")) {
+    if let (Some(e), Some(f)) = (find(Knob::DivideExact), find(Knob::DivideF32)) {
         let _ = writeln!(
             out,
             "- The GTE's UNR divide is not where the error comes from: exact and f32 division \
@@ -849,7 +888,7 @@ fn conclusion(base: &Row, rows: &[Row], tess: &[&Row]) -> String {
             f.ratio
         );
     }
-    if let Some(d) = find("dithering off") {
+    if let Some(d) = find(Knob::DitherOff) {
         let _ = writeln!(
             out,
             "- Dithering changes {} pixels' colour and nothing about geometry or texels (texel \
@@ -876,9 +915,9 @@ fn conclusion(base: &Row, rows: &[Row], tess: &[&Row]) -> String {
         );
     }
     if let (Some(sp), Some(pc), Some(both)) = (
-        find("sub-pixel vertices (non-hardware)"),
-        find("perspective-correct UVs (non-hardware)"),
-        find("sub-pixel + perspective (non-hardware)"),
+        find(Knob::Subpixel),
+        find(Knob::PerspectiveUv),
+        find(Knob::SubpixelPerspective),
     ) {
         let best_tess = tess
             .iter()
@@ -908,4 +947,81 @@ fn conclusion(base: &Row, rows: &[Row], tess: &[&Row]) -> String {
         base.jitter
     );
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows as `measure` would return them, with distinct figures per row.
+    fn synthetic_rows() -> Vec<Row> {
+        configs()
+            .iter()
+            .zip(1..)
+            .map(|(c, i)| Row {
+                knob: c.knob,
+                name: c.name.to_string(),
+                frame_ms: f64::from(i),
+                ratio: f64::from(i),
+                drawn: f64::from(i),
+                differing_pixels: i as usize,
+                texel_mean: f64::from(i),
+                texel_max: f64::from(i),
+                jitter: f64::from(i),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_knob_has_one_row_with_a_distinct_label() {
+        let rows = configs();
+        assert_eq!(rows.len(), Knob::ALL.len());
+        assert_eq!(rows[0].knob, Knob::Hardware);
+        let labels: std::collections::HashSet<_> = rows.iter().map(|c| c.name).collect();
+        assert_eq!(labels.len(), rows.len());
+    }
+
+    #[test]
+    fn every_knob_yields_its_paragraph_whatever_the_labels() {
+        let mut rows = synthetic_rows();
+        for r in &mut rows {
+            r.name = format!("renamed {:?}", r.knob);
+        }
+        let tess: Vec<&Row> = rows
+            .iter()
+            .filter(|r| matches!(r.knob, Knob::Tessellation(_)))
+            .collect();
+        let text = conclusion(&rows[0], &rows, &tess);
+        let paragraphs: Vec<&str> = text.lines().filter(|l| l.starts_with("- ")).collect();
+        // Divide (exact, f32), dithering, tessellation (1-4), sub-pixel/perspective, jitter.
+        assert_eq!(paragraphs.len(), 5, "{text}");
+        for needle in [
+            "- The GTE's UNR divide",
+            "- Dithering changes",
+            "- Tessellation is the hardware's lever",
+            "- Perspective-correct texture coordinates",
+            "- On the hardware path",
+        ] {
+            assert!(text.contains(needle), "missing {needle:?} in {text}");
+        }
+        // The divide paragraph quotes the exact (row 2) and f32 (row 3) figures; the
+        // tessellation paragraph quotes level 4 (row 11) polygons.
+        assert!(text.contains("change 2 and 3 pixels"), "{text}");
+        assert!(text.contains("from 1 to 11"), "{text}");
+    }
+
+    #[test]
+    fn a_missing_row_drops_only_its_paragraph() {
+        let rows: Vec<Row> = synthetic_rows()
+            .into_iter()
+            .filter(|r| r.knob != Knob::DitherOff)
+            .collect();
+        let tess: Vec<&Row> = rows
+            .iter()
+            .filter(|r| matches!(r.knob, Knob::Tessellation(_)))
+            .collect();
+        let text = conclusion(&rows[0], &rows, &tess);
+        assert!(!text.contains("Dithering changes"));
+        assert_eq!(text.lines().filter(|l| l.starts_with("- ")).count(), 4);
+    }
 }
