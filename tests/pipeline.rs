@@ -554,7 +554,7 @@ fn polygon_wider_than_the_gpu_draws_is_dropped_then_split() {
 }
 
 /// Depth cueing: with fog from Z = 500 to Z = 2000, a quad beyond the far depth gets
-/// IR0 = 1.0 (clamped) and the GTE's interpolation gives exactly the far colour (gte.md §8:
+/// IR0 = 1.0 (clamped) and the GTE's interpolation gives exactly the far colour (docs/hardware/gte.md §8:
 /// MAC = (FC - in) * IR0 / 4096 + in = FC); a quad nearer than `near` gets IR0 = 0 and keeps
 /// its own colour. Lit (NCDT/NCDS) or unlit (DPCS), the result is the same.
 #[test]

@@ -1,9 +1,9 @@
 //! The colour pipeline: 15-bit packing, the 4x4 dither matrix, texture modulation and the
-//! four semi-transparency modes (gpu.md §6).
+//! four semi-transparency modes (docs/hardware/gpu.md §6).
 
 use crate::state::BlendMode;
 
-/// The dither offsets, indexed `[y & 3][x & 3]` (gpu.md §6).
+/// The dither offsets, indexed `[y & 3][x & 3]` (docs/hardware/gpu.md §6).
 pub const DITHER_MATRIX: [[i32; 4]; 4] = [
     [-4, 0, -3, 1],
     [2, -2, 3, -1],
@@ -13,7 +13,7 @@ pub const DITHER_MATRIX: [[i32; 4]; 4] = [
 
 /// A 9-bit intensity (an 8-bit colour, or a modulated texel channel `(t5 * c8) >> 4`, at
 /// most 494) to its 5-bit value for one dither offset: `clamp(i + offset, 0, 255) >> 3`
-/// (gpu.md §6). Indexed with `i & 511`.
+/// (docs/hardware/gpu.md §6). Indexed with `i & 511`.
 pub type ShadeTable = [u8; 512];
 
 const fn shade_table(offset: i32) -> ShadeTable {
@@ -48,19 +48,19 @@ const fn dither_tables() -> [[ShadeTable; 4]; 4] {
     t
 }
 
-/// One [`ShadeTable`] per dither matrix cell, indexed `[y & 3][x & 3]` (gpu.md §6).
+/// One [`ShadeTable`] per dither matrix cell, indexed `[y & 3][x & 3]` (docs/hardware/gpu.md §6).
 pub static DITHER_TABLES: [[ShadeTable; 4]; 4] = dither_tables();
 
-/// The [`ShadeTable`] of undithered pixels: `min(i, 255) >> 3` (gpu.md §6).
+/// The [`ShadeTable`] of undithered pixels: `min(i, 255) >> 3` (docs/hardware/gpu.md §6).
 pub static PLAIN_TABLE: ShadeTable = shade_table(0);
 
-/// 8-bit channel to 5 bits with a dither offset: clamp(c + d, 0, 255) >> 3 (gpu.md §6).
+/// 8-bit channel to 5 bits with a dither offset: clamp(c + d, 0, 255) >> 3 (docs/hardware/gpu.md §6).
 #[inline(always)]
 pub fn dither_channel(c: i32, offset: i32) -> u16 {
     ((c + offset).clamp(0, 255) >> 3) as u16
 }
 
-/// Pack 5-bit R, G, B into 15-bit BGR (gpu.md §1).
+/// Pack 5-bit R, G, B into 15-bit BGR (docs/hardware/gpu.md §1).
 #[inline(always)]
 pub const fn pack555(r: u16, g: u16, b: u16) -> u16 {
     r | (g << 5) | (b << 10)
@@ -73,13 +73,13 @@ pub const fn unpack888(color: u32) -> [u8; 3] {
 }
 
 /// Modulate a 5-bit texel channel by an 8-bit colour and dither:
-/// clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3 (gpu.md §6). 80h is the identity.
+/// clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3 (docs/hardware/gpu.md §6). 80h is the identity.
 #[inline(always)]
 pub fn modulate_channel(t5: u16, c8: i32, offset: i32) -> u16 {
     dither_channel((t5 as i32 * c8) >> 4, offset)
 }
 
-/// Blend new pixel `f` over VRAM pixel `b` per 5-bit channel (gpu.md §6). Bit 15 of the
+/// Blend new pixel `f` over VRAM pixel `b` per 5-bit channel (docs/hardware/gpu.md §6). Bit 15 of the
 /// result is zero.
 #[inline(always)]
 pub fn blend(mode: BlendMode, b: u16, f: u16) -> u16 {
@@ -108,7 +108,7 @@ mod tests {
     fn blend_modes_on_chosen_colours() {
         let b = pack555(31, 10, 0);
         let f = pack555(16, 4, 31);
-        // gpu.md §6: mode 0 floors, (31+16)>>1 = 23.
+        // docs/hardware/gpu.md §6: mode 0 floors, (31+16)>>1 = 23.
         assert_eq!(blend(BlendMode::Average, b, f), pack555(23, 7, 15));
         assert_eq!(blend(BlendMode::Add, b, f), pack555(31, 14, 31));
         assert_eq!(blend(BlendMode::Subtract, b, f), pack555(15, 6, 0));

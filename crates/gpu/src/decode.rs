@@ -3,7 +3,7 @@
 //! or dropped and why), and the VRAM it may write.
 //!
 //! Decoding uses the packet-length rule, field decoders and primitive builders that GP0
-//! itself runs (gpu.md §2), and the drop tests are the rasterizer's own
+//! itself runs (docs/hardware/gpu.md §2), and the drop tests are the rasterizer's own
 //! ([`crate::rasterizer::classify_triangle`] and friends), so a decoded command describes
 //! exactly what [`Gpu::gp0`] does with it. Decoding never changes the GPU.
 //!
@@ -35,7 +35,7 @@ use crate::state::{BlendMode, DrawState, TextureDepth};
 use crate::transfer::TransferRect;
 use crate::{Gpu, VRAM_HEIGHT, VRAM_WIDTH};
 
-/// The kind of a GP0 or GP1 command (gpu.md §2, §8, §9).
+/// The kind of a GP0 or GP1 command (docs/hardware/gpu.md §2, §8, §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Kind {
     /// GP0 00h, 03h-1Eh, E0h, E7h-FFh: no operation.
@@ -97,11 +97,11 @@ impl Kind {
 /// One primitive a command hands the rasterizer, with the rasterizer's verdict.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Primitive {
-    /// A triangle (a quad gives two, gpu.md §3.1).
+    /// A triangle (a quad gives two, docs/hardware/gpu.md §3.1).
     Triangle(Triangle, Coverage),
-    /// A line segment (a polyline gives one per vertex after the first, gpu.md §4).
+    /// A line segment (a polyline gives one per vertex after the first, docs/hardware/gpu.md §4).
     Line(Line, Coverage),
-    /// A rectangle (gpu.md §5).
+    /// A rectangle (docs/hardware/gpu.md §5).
     Rectangle(Rectangle, Coverage),
 }
 
@@ -137,9 +137,9 @@ impl Primitive {
     }
 
     /// The texture coordinates the primitive spans, as inclusive `(u_min, v_min, u_max,
-    /// v_max)` before the texture window (gpu.md §7): the vertices' range for a triangle;
+    /// v_max)` before the texture window (docs/hardware/gpu.md §7): the vertices' range for a triangle;
     /// for a rectangle the `width` x `height` texels from its origin, the whole 0-255 range
-    /// on an axis where they wrap at 256 (gpu.md §5). `None` when untextured.
+    /// on an axis where they wrap at 256 (docs/hardware/gpu.md §5). `None` when untextured.
     pub fn uv_bounds(&self) -> Option<(u8, u8, u8, u8)> {
         self.texture()?;
         match self {
@@ -240,7 +240,7 @@ impl Decoded {
     }
 }
 
-/// How many words a GP0 command starting at `words[0]` consumes (gpu.md §2, §8): the
+/// How many words a GP0 command starting at `words[0]` consumes (docs/hardware/gpu.md §2, §8): the
 /// packet, plus a CPU-to-VRAM transfer's data words, plus a polyline's further vertices
 /// and terminator. `Err` carries the count needed (`None` for an unterminated polyline)
 /// when `words` ends first.
@@ -401,7 +401,7 @@ impl Gpu {
         decode_gp0(words, &self.draw, self.texture_disable_allowed)
     }
 
-    /// Decode a GP1 command (gpu.md §9).
+    /// Decode a GP1 command (docs/hardware/gpu.md §9).
     pub fn decode_gp1(&self, word: u32) -> Decoded {
         decode_gp1(word)
     }
@@ -421,7 +421,7 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
         0x02 => {
             let mut d = Decoded::new(Kind::Fill, "fill");
             let (pos, size) = (packet[1], packet[2]);
-            // gpu.md §8: x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh.
+            // docs/hardware/gpu.md §8: x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh.
             let x = (pos & 0x3F0) as usize;
             let y = ((pos >> 16) & 0x1FF) as usize;
             let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
@@ -737,7 +737,7 @@ fn decode_gp1(word: u32) -> Decoded {
         _ => "unused GP1",
     };
     let mut d = Decoded::new(Kind::Display, format!("GP1 {name}"));
-    // Field layouts: gpu.md §9 (psx-spx "GPU Display Control Commands").
+    // Field layouts: docs/hardware/gpu.md §9 (psx-spx "GPU Display Control Commands").
     match op {
         0x03 => d.field("display", if word & 1 != 0 { "off" } else { "on" }.into()),
         0x04 => d.field("direction", format!("{}", word & 3)),
@@ -924,7 +924,7 @@ mod tests {
 
     #[test]
     fn command_lengths_follow_the_word_counts_of_section_2() {
-        // F3=4, F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 (gpu.md §2).
+        // F3=4, F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 (docs/hardware/gpu.md §2).
         for (op, n) in [
             (0x20, 4),
             (0x28, 5),
@@ -969,7 +969,7 @@ mod tests {
     #[test]
     fn drop_reasons() {
         let gpu = gpu_with_area();
-        // 1024 wide: size limit (gpu.md §3.2).
+        // 1024 wide: size limit (docs/hardware/gpu.md §3.2).
         let d = gpu.decode_gp0(&[0x2000_0000, 0, 0x0000_0400, 0x0010_0000]);
         assert_eq!(
             d.primitives[0].coverage(),

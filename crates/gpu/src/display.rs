@@ -1,4 +1,4 @@
-//! GP1 display control (gpu.md §9) and the GPUSTAT register.
+//! GP1 display control (docs/hardware/gpu.md §9) and the GPUSTAT register.
 
 use crate::state::{BlendMode, TextureDepth};
 use crate::{Gpu, drawing, timing};
@@ -19,7 +19,7 @@ pub struct DisplayArea {
     pub color_24bit: bool,
 }
 
-/// State written through GP1 (gpu.md §9).
+/// State written through GP1 (docs/hardware/gpu.md §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DisplayState {
@@ -89,7 +89,7 @@ impl DisplayState {
 }
 
 impl Gpu {
-    /// One word written to the GP1 port (gpu.md §9).
+    /// One word written to the GP1 port (docs/hardware/gpu.md §9).
     pub fn gp1(&mut self, word: u32) {
         match word >> 24 {
             0x00 => self.reset(),

@@ -1,6 +1,6 @@
 //! GP0: packet assembly (words arrive one at a time, split anywhere), decoding of render
 //! commands into primitives, environment commands E1h-E6h, and the transfer commands
-//! (gpu.md §2, §8).
+//! (docs/hardware/gpu.md §2, §8).
 
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
@@ -25,7 +25,7 @@ enum Mode {
     Polyline(Polyline),
 }
 
-/// A polyline in progress (gpu.md §2, §4).
+/// A polyline in progress (docs/hardware/gpu.md §2, §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub(crate) struct Polyline {
@@ -34,7 +34,7 @@ pub(crate) struct Polyline {
     pending_color: Option<[u8; 3]>,
 }
 
-/// What one word after a polyline's first segment does (gpu.md §2, §4).
+/// What one word after a polyline's first segment does (docs/hardware/gpu.md §2, §4).
 pub(crate) enum PolylineStep {
     /// The terminator: the polyline ends.
     End,
@@ -53,7 +53,7 @@ impl Polyline {
         }
     }
 
-    /// Consume the next word (gpu.md §2: the terminator is tested where the next vertex's
+    /// Consume the next word (docs/hardware/gpu.md §2: the terminator is tested where the next vertex's
     /// first word would be).
     pub(crate) fn step(mut self, draw: &DrawState, word: u32) -> PolylineStep {
         let expecting_first_word = !self.line.gouraud || self.pending_color.is_none();
@@ -73,7 +73,7 @@ impl Polyline {
     }
 }
 
-/// A polygon packet decoded against the drawing state it meets (gpu.md §2, §3).
+/// A polygon packet decoded against the drawing state it meets (docs/hardware/gpu.md §2, §3).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct PolygonPacket {
     /// The first triangle (v0, v1, v2).
@@ -96,7 +96,7 @@ pub(crate) struct Gp0State {
 }
 
 /// GP0 input that has started but not finished: what a stream that stops here leaves
-/// behind (gpu.md §2, §8).
+/// behind (docs/hardware/gpu.md §2, §8).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PendingInput {
     /// A command packet with fewer words than its command needs.
@@ -140,7 +140,7 @@ fn takes_fifo_space(cmd: u32) -> bool {
     !matches!(cmd >> 24, 0x00 | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF)
 }
 
-/// Words in the packet a command word starts (gpu.md §2).
+/// Words in the packet a command word starts (docs/hardware/gpu.md §2).
 pub(crate) fn packet_len(cmd: u32) -> usize {
     let op = cmd >> 24;
     match op {
@@ -169,12 +169,12 @@ pub(crate) fn packet_len(cmd: u32) -> usize {
     }
 }
 
-/// Sign-extend the 11-bit field (gpu.md §2).
+/// Sign-extend the 11-bit field (docs/hardware/gpu.md §2).
 pub(crate) const fn sext11(v: u32) -> i32 {
     ((v << 21) as i32) >> 21
 }
 
-/// The polyline terminator, tested where the next vertex's first word would be (gpu.md §2).
+/// The polyline terminator, tested where the next vertex's first word would be (docs/hardware/gpu.md §2).
 pub(crate) const fn is_terminator(word: u32) -> bool {
     word & 0xF000_F000 == 0x5000_5000
 }
@@ -197,7 +197,7 @@ fn texture_depth(bits: u32) -> TextureDepth {
 }
 
 impl DrawMode {
-    /// GP0(E1h) bits 0-13 (gpu.md §2).
+    /// GP0(E1h) bits 0-13 (docs/hardware/gpu.md §2).
     pub fn from_e1(word: u32) -> Self {
         let mut m = DrawMode::default();
         m.set_texpage(word);
@@ -208,7 +208,7 @@ impl DrawMode {
         m
     }
 
-    /// The bits a polygon's texpage attribute rewrites: 0-8 and 11, never 9-10 (gpu.md §2).
+    /// The bits a polygon's texpage attribute rewrites: 0-8 and 11, never 9-10 (docs/hardware/gpu.md §2).
     pub fn set_texpage(&mut self, attr: u32) {
         self.page_x = ((attr & 0xF) * 64) as u16;
         self.page_y = ((attr >> 4 & 1) * 256) as u16;
@@ -219,7 +219,7 @@ impl DrawMode {
     }
 }
 
-/// GP0(E1h)-(E6h): update the drawing environment (gpu.md §2).
+/// GP0(E1h)-(E6h): update the drawing environment (docs/hardware/gpu.md §2).
 pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_allowed: bool) {
     match cmd >> 24 {
         0xE1 => {
@@ -256,7 +256,7 @@ pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_
     }
 }
 
-/// Textures apply unless E1.11 disabled them after GP1(09h) allowed it (gpu.md §2).
+/// Textures apply unless E1.11 disabled them after GP1(09h) allowed it (docs/hardware/gpu.md §2).
 fn textures_enabled(mode: &DrawMode, texture_disable_allowed: bool) -> bool {
     !(mode.texture_disable && texture_disable_allowed)
 }
@@ -273,7 +273,7 @@ fn texture(mode: &DrawMode, clut_attr: u32, raw: bool) -> Texture {
     }
 }
 
-/// Decode a polygon packet (gpu.md §2, §3).
+/// Decode a polygon packet (docs/hardware/gpu.md §2, §3).
 pub(crate) fn polygon_packet(
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
@@ -334,7 +334,7 @@ pub(crate) fn polygon_packet(
     }
 }
 
-/// Decode a line packet's first segment (gpu.md §2, §4).
+/// Decode a line packet's first segment (docs/hardware/gpu.md §2, §4).
 pub(crate) fn line_packet(p: &[u32; MAX_PACKET], draw: &DrawState) -> Line {
     let cmd = p[0];
     let gouraud = cmd & (1 << 28) != 0;
@@ -353,7 +353,7 @@ pub(crate) fn line_packet(p: &[u32; MAX_PACKET], draw: &DrawState) -> Line {
     }
 }
 
-/// Decode a rectangle packet (gpu.md §2, §5).
+/// Decode a rectangle packet (docs/hardware/gpu.md §2, §5).
 pub(crate) fn rectangle_packet(
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
@@ -495,7 +495,7 @@ impl Gpu {
         }
     }
 
-    /// A vertex from a position word plus the drawing offset (gpu.md §2).
+    /// A vertex from a position word plus the drawing offset (docs/hardware/gpu.md §2).
     pub(crate) fn vertex(draw: &DrawState, pos: u32, rgb: u32) -> Vertex {
         Vertex {
             x: sext11(pos & 0x7FF) + draw.offset_x as i32,

@@ -1,5 +1,5 @@
 //! PlayStation GPU: GP0/GP1 command processing into a 1024x512 16-bit VRAM, pixel-exact with
-//! a real console. Facts are those of the GPU fact sheet (`gpu.md`, cited by section); the
+//! a real console. Facts are those of the GPU hardware reference (`docs/hardware/gpu.md`, cited by section); the
 //! choices made where it is silent are listed in `docs/gpu.md`.
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
@@ -49,7 +49,7 @@ pub const VRAM_HEIGHT: usize = 512;
 /// VRAM size in halfwords.
 pub const VRAM_LEN: usize = VRAM_WIDTH * VRAM_HEIGHT;
 
-/// 1024x512 halfwords of 1555 MBGR pixels, row-major (`y * 1024 + x`) (gpu.md §1).
+/// 1024x512 halfwords of 1555 MBGR pixels, row-major (`y * 1024 + x`) (docs/hardware/gpu.md §1).
 #[derive(Clone, PartialEq, Eq)]
 pub struct Vram {
     pixels: Box<[u16; VRAM_LEN]>,
@@ -243,7 +243,7 @@ impl Gpu {
         &self.display
     }
 
-    /// The display area the current GP1 state selects (gpu.md §9): position, size in
+    /// The display area the current GP1 state selects (docs/hardware/gpu.md §9): position, size in
     /// pixels from the display ranges, colour depth ([`DisplayState::area`]).
     pub fn display_area(&self) -> DisplayArea {
         self.display.area()

@@ -1,4 +1,4 @@
-//! Ordering tables (gpu.md §2): a main-RAM-like word buffer holding an OT and a primitive
+//! Ordering tables (docs/hardware/gpu.md §2): a main-RAM-like word buffer holding an OT and a primitive
 //! buffer, the DMA6 (OTC) clear, packet insertion, and the DMA2 linked-list walk that feeds
 //! packets to GP0 from the far end of the table to the near end (the painter's algorithm; the
 //! GPU has no z-buffer).
@@ -21,7 +21,7 @@ pub const END_MARKER: u32 = 0x00FF_FFFF;
 pub const MAX_PACKET_WORDS: usize = 255;
 /// Most words a table (entries plus primitive buffer) can address: links are 24-bit byte
 /// addresses whose bit 23 is the end marker, so a node's byte address `4 * index` must stay
-/// below 80_0000h (gpu.md §2).
+/// below 80_0000h (docs/hardware/gpu.md §2).
 pub const MAX_WORDS: usize = 0x80_0000 / 4;
 /// Deepest table [`OrderingTable::new`] accepts: every entry must be addressable.
 pub const MAX_DEPTH: usize = MAX_WORDS - 1;
@@ -175,7 +175,7 @@ impl OrderingTable {
 
     /// Link a GP0 packet at entry `index`: its words are copied into the primitive buffer and
     /// its node becomes the entry's first, so packets at one index come out
-    /// most-recent-first (gpu.md §2).
+    /// most-recent-first (docs/hardware/gpu.md §2).
     pub fn insert(&mut self, index: usize, packet: &[u32]) -> Result<(), OtError> {
         if index >= self.depth {
             return Err(OtError::IndexOutOfRange {

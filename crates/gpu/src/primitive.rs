@@ -1,5 +1,5 @@
 //! Decoded drawing primitives: what the GP0 command processor hands to the rasterizer
-//! (gpu.md §2-§5). Coordinates are the sign-extended 11-bit vertex plus the drawing offset,
+//! (docs/hardware/gpu.md §2-§5). Coordinates are the sign-extended 11-bit vertex plus the drawing offset,
 //! not yet wrapped; the rasterizer applies the size-drop rule and the 11-bit wrap.
 
 use crate::state::{BlendMode, TextureDepth};
@@ -38,7 +38,7 @@ pub struct Texture {
     pub raw: bool,
 }
 
-/// A triangle (a quad arrives as two: (v0,v1,v2) then (v1,v2,v3)) (gpu.md §3).
+/// A triangle (a quad arrives as two: (v0,v1,v2) then (v1,v2,v3)) (docs/hardware/gpu.md §3).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Triangle {
@@ -54,7 +54,7 @@ pub struct Triangle {
     pub dither: bool,
 }
 
-/// A line segment; a polyline arrives as consecutive segments (gpu.md §4).
+/// A line segment; a polyline arrives as consecutive segments (docs/hardware/gpu.md §4).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Line {
@@ -68,7 +68,7 @@ pub struct Line {
     pub dither: bool,
 }
 
-/// A rectangle (sprite): never dithered, uses the E1 texture page (gpu.md §5).
+/// A rectangle (sprite): never dithered, uses the E1 texture page (docs/hardware/gpu.md §5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Rectangle {
@@ -88,7 +88,7 @@ pub struct Rectangle {
     pub flip_y: bool,
 }
 
-/// Whether a polygon is dithered when E1 bit 9 is set (gpu.md §6): Gouraud polygons and
+/// Whether a polygon is dithered when E1 bit 9 is set (docs/hardware/gpu.md §6): Gouraud polygons and
 /// modulated textured polygons are; flat untextured and raw-textured ones are not.
 pub fn dither_applies(gouraud: bool, textured: bool, raw: bool) -> bool {
     if textured { !raw } else { gouraud }

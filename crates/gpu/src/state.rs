@@ -1,7 +1,7 @@
 //! Drawing environment set by GP0(E1h..E6h): draw mode, texture window, drawing area,
-//! drawing offset and mask settings (gpu.md §2).
+//! drawing offset and mask settings (docs/hardware/gpu.md §2).
 
-/// Texture colour depth, E1 bits 7-8 (gpu.md §2, §7). Value 3 behaves as 15-bit.
+/// Texture colour depth, E1 bits 7-8 (docs/hardware/gpu.md §2, §7). Value 3 behaves as 15-bit.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum TextureDepth {
@@ -14,7 +14,7 @@ pub enum TextureDepth {
     Direct15,
 }
 
-/// Semi-transparency mode, E1 bits 5-6 (gpu.md §6). B = VRAM pixel, F = new pixel.
+/// Semi-transparency mode, E1 bits 5-6 (docs/hardware/gpu.md §6). B = VRAM pixel, F = new pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum BlendMode {
@@ -29,7 +29,7 @@ pub enum BlendMode {
     AddQuarter,
 }
 
-/// GP0(E1h) draw mode (gpu.md §2).
+/// GP0(E1h) draw mode (docs/hardware/gpu.md §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct DrawMode {
@@ -56,7 +56,7 @@ pub struct DrawMode {
     pub flip_y: bool,
 }
 
-/// GP0(E2h) texture window, each field in 8-texel units (5 bits) (gpu.md §2, §7).
+/// GP0(E2h) texture window, each field in 8-texel units (5 bits) (docs/hardware/gpu.md §2, §7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct TextureWindow {
@@ -70,7 +70,7 @@ pub struct TextureWindow {
     pub offset_y: u8,
 }
 
-/// GP0(E3h)/(E4h) drawing area, inclusive bounds (gpu.md §2). X is 10 bits; Y is 10 bits
+/// GP0(E3h)/(E4h) drawing area, inclusive bounds (docs/hardware/gpu.md §2). X is 10 bits; Y is 10 bits
 /// (0-1023) on the modelled v2 GPU, compared with the unwrapped pixel Y, while rows are written
 /// at `y & 511`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -86,7 +86,7 @@ pub struct DrawingArea {
     pub bottom: u16,
 }
 
-/// GP0(E6h) mask bit settings (gpu.md §6).
+/// GP0(E6h) mask bit settings (docs/hardware/gpu.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct MaskSettings {

@@ -1,11 +1,11 @@
 //! Texture sampling: texture window, 4/8/15-bit texel fetch, CLUT lookup and the CLUT cache
-//! (gpu.md §7).
+//! (docs/hardware/gpu.md §7).
 
 use crate::VRAM_WIDTH;
 use crate::primitive::Texture;
 use crate::state::{TextureDepth, TextureWindow};
 
-/// The latched CLUT (gpu.md §7, "CLUT cache"): entries are loaded from VRAM when a 4/8-bit
+/// The latched CLUT (docs/hardware/gpu.md §7, "CLUT cache"): entries are loaded from VRAM when a 4/8-bit
 /// primitive is drawn with a CLUT position other than the cached one, or needs 8-bit entries
 /// when only 4-bit ones are cached; GP0(01h) invalidates it. Overwriting the CLUT in VRAM does
 /// not refresh it.
@@ -78,7 +78,7 @@ impl ClutCache {
 }
 
 impl TextureWindow {
-    /// Apply the window to an 8-bit U: (u & !(maskX*8)) | ((offX & maskX) * 8) (gpu.md §7).
+    /// Apply the window to an 8-bit U: (u & !(maskX*8)) | ((offX & maskX) * 8) (docs/hardware/gpu.md §7).
     #[inline(always)]
     pub fn apply_u(&self, u: u8) -> u8 {
         (u & !(self.mask_x << 3)) | ((self.offset_x & self.mask_x) << 3)
@@ -100,7 +100,7 @@ pub struct Sampler<'a> {
     pub page_x: usize,
     /// Page top line.
     pub page_y: usize,
-    /// The texture window as AND/OR masks on U: `u' = (u & u_and) | u_or` (gpu.md §7).
+    /// The texture window as AND/OR masks on U: `u' = (u & u_and) | u_or` (docs/hardware/gpu.md §7).
     pub u_and: u8,
     /// OR mask on U.
     pub u_or: u8,
@@ -125,7 +125,7 @@ impl<'a> Sampler<'a> {
     }
 
     /// The texel at (u, v) for a page of kind `kind` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
-    /// after the texture window; X wraps at 1024 (gpu.md §7).
+    /// after the texture window; X wraps at 1024 (docs/hardware/gpu.md §7).
     #[inline(always)]
     pub fn fetch(&self, kind: u8, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> u16 {
         let u = ((u & self.u_and) | self.u_or) as usize;
@@ -149,7 +149,7 @@ impl<'a> Sampler<'a> {
 mod tests {
     use super::*;
 
-    /// The AND/OR form equals the fact-sheet formula for every window and coordinate.
+    /// The AND/OR form equals the hardware-reference formula for every window and coordinate.
     #[test]
     fn window_masks_match_formula() {
         for mask in 0..32u8 {

@@ -1,11 +1,11 @@
 //! VRAM transfer commands: fill (02h), VRAM-to-VRAM copy (80h), CPU-to-VRAM (A0h) and
-//! VRAM-to-CPU (C0h) (gpu.md §8).
+//! VRAM-to-CPU (C0h) (docs/hardware/gpu.md §8).
 
 use crate::rasterizer::Rows;
 use crate::state::MaskSettings;
 use crate::{VRAM_LEN, VRAM_WIDTH, Vram};
 
-/// A transfer rectangle as the copy commands mask it (gpu.md §8): x & 3FFh, y & 1FFh,
+/// A transfer rectangle as the copy commands mask it (docs/hardware/gpu.md §8): x & 3FFh, y & 1FFh,
 /// w = ((w-1) & 3FFh) + 1, h = ((h-1) & 1FFh) + 1, so a size of 0 means the maximum.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -46,7 +46,7 @@ impl TransferRect {
     }
 }
 
-/// Write one transferred pixel obeying E6 (gpu.md §6, §8).
+/// Write one transferred pixel obeying E6 (docs/hardware/gpu.md §6, §8).
 fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSettings) {
     if mask.check && vram.pixel(x, y) & 0x8000 != 0 {
         return;
@@ -55,7 +55,7 @@ fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSetti
     vram.set_pixel(x, y, value | set);
 }
 
-/// GP0(02h) fill (gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
+/// GP0(02h) fill (docs/hardware/gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
 /// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Lines
 /// `rows` drops are skipped (480i, docs/hardware/gpu.md §8). Returns the filled width and
 /// height.
@@ -80,7 +80,7 @@ pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32, rows: Rows) -> (u3
     (w as u32, h as u32)
 }
 
-/// GP0(80h) VRAM-to-VRAM copy (gpu.md §8). Rows are copied top to bottom, each row read
+/// GP0(80h) VRAM-to-VRAM copy (docs/hardware/gpu.md §8). Rows are copied top to bottom, each row read
 /// whole before it is written (docs/gpu.md, "Overlapping copies"); E6 applies. Returns the
 /// pixels copied.
 pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) -> u32 {
@@ -101,7 +101,7 @@ pub fn copy(vram: &mut Vram, src: u32, dst: u32, size: u32, mask: MaskSettings) 
 }
 
 /// A CPU-to-VRAM transfer in progress (GP0 A0h): pixels arrive two per word; an odd count
-/// leaves the last word's upper half unused (gpu.md §8).
+/// leaves the last word's upper half unused (docs/hardware/gpu.md §8).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct WriteTransfer {

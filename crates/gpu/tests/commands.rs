@@ -1,5 +1,5 @@
 //! GP0 transfers and environment, GP1, GPUSTAT, packet assembly and ordering tables, on
-//! hand-worked cases (gpu.md §2, §8, §9).
+//! hand-worked cases (docs/hardware/gpu.md §2, §8, §9).
 
 use gpu::ordering_table::{OrderingTable, OtError, walk_ram};
 use gpu::{Gpu, command_stream};
@@ -318,7 +318,7 @@ fn pos(x: u32, y: u32) -> u32 {
     y << 16 | x
 }
 
-/// Polyline termination (gpu.md §2): the terminator is tested where the next vertex's first
+/// Polyline termination (docs/hardware/gpu.md §2): the terminator is tested where the next vertex's first
 /// word would be, i.e. the position word of a flat polyline and the colour word of a Gouraud
 /// one; 5000_5000h in a Gouraud position slot is a vertex at (0, 0).
 #[test]

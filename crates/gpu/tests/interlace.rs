@@ -1,5 +1,5 @@
 //! 480i drawing: with GP1(08h) bits 2 and 5 set and GP0(E1h) bit 10 clear, polygons, lines,
-//! rectangles and fills skip the VRAM lines of the field being displayed (gpu.md §8:
+//! rectangles and fills skip the VRAM lines of the field being displayed (docs/hardware/gpu.md §8:
 //! Mednafen's LineSkipTest, DuckStation's interlaced fill; psx-spx "GP1(08h)"). Expected
 //! images: the same commands drawn progressively, with the skipped lines blanked by the
 //! test's own parity rule.

@@ -1,4 +1,4 @@
-//! Ordering-table clear, insertion and DMA2 walk (gpu.md §2), checked against hand-built
+//! Ordering-table clear, insertion and DMA2 walk (docs/hardware/gpu.md §2), checked against hand-built
 //! linked lists.
 
 use gpu::ordering_table::{END_MARKER, OrderingTable, OtError, walk_ram};

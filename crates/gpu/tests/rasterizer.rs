@@ -1,5 +1,5 @@
-//! Rasterization rules on small hand-worked cases (gpu.md §3-§7). Expected pixels and colours
-//! are worked out from the fact sheet's formulas in the comments, not taken from the code.
+//! Rasterization rules on small hand-worked cases (docs/hardware/gpu.md §3-§7). Expected pixels and colours
+//! are worked out from the hardware reference's formulas in the comments, not taken from the code.
 
 use gpu::Gpu;
 use proptest::prelude::*;
@@ -155,7 +155,7 @@ fn drawing_offset() {
     assert_eq!(covered(&g, 8, 8).len(), 0);
 }
 
-/// Semi-transparency modes on a rectangle over a filled background (gpu.md §6):
+/// Semi-transparency modes on a rectangle over a filled background (docs/hardware/gpu.md §6):
 /// B = (31,10,0), F = (16,4,31): mode 0 (23,7,15), 1 (31,14,31), 2 (15,6,0), 3 (31,11,7).
 #[test]
 fn blend_modes() {
@@ -244,7 +244,7 @@ fn texture_modulation() {
     assert_eq!(px(&g, 0, 1), 5 | 10 << 5 | 15 << 10);
 }
 
-/// An 8000h texel in an opaque primitive draws black with bit 15 set (gpu.md §1).
+/// An 8000h texel in an opaque primitive draws black with bit 15 set (docs/hardware/gpu.md §1).
 #[test]
 fn texel_8000_is_opaque_black() {
     let mut g = gpu();
@@ -267,7 +267,7 @@ fn texture_window() {
     assert_eq!(px(&g, 0, 0), 0x101);
 }
 
-/// CLUT cache (gpu.md §7): overwriting the CLUT with a fill does not refresh the latched
+/// CLUT cache (docs/hardware/gpu.md §7): overwriting the CLUT with a fill does not refresh the latched
 /// entries; GP0(01h) does.
 #[test]
 fn clut_cache_latch() {
@@ -304,7 +304,7 @@ fn rectangle_uv_wrap_and_flip() {
 }
 
 /// Lines include both endpoints: (0,0)-(3,0) draws 4 pixels; a polyline joint drawn twice
-/// blends twice (gpu.md §4).
+/// blends twice (docs/hardware/gpu.md §4).
 #[test]
 fn line_endpoints_and_polyline_joint() {
     let mut g = gpu();
@@ -338,7 +338,7 @@ fn fill(g: &mut Gpu, color: u32, x: u32, y: u32, w: u32, h: u32) {
     g.gp0_words(&[0x0200_0000 | color, y << 16 | x, h << 16 | w]);
 }
 
-/// CLUT cache (gpu.md §7): an 8-bit draw caches 256 entries, so a following 4-bit draw with
+/// CLUT cache (docs/hardware/gpu.md §7): an 8-bit draw caches 256 entries, so a following 4-bit draw with
 /// the same CLUT uses them even after the VRAM copy changed; a 4-bit draw caches only 16, so
 /// a following 8-bit draw reloads.
 #[test]
@@ -368,7 +368,7 @@ fn clut_cache_depth_rules() {
     assert_eq!(px(&g, 0, 1), 0x03E0, "4 -> 8 reloads");
 }
 
-/// CLUT cache (gpu.md §7): a different CLUT position reloads, and so does returning to the
+/// CLUT cache (docs/hardware/gpu.md §7): a different CLUT position reloads, and so does returning to the
 /// first one; E1 changes alone (a 15-bit page in between) invalidate nothing.
 #[test]
 fn clut_cache_position_rules() {
@@ -393,7 +393,7 @@ fn clut_cache_position_rules() {
     assert_eq!(px(&g, 0, 3), 0x03E0, "back to A reloads from VRAM");
 }
 
-/// Texel bit 15 decides blending in a semi-transparent textured primitive (gpu.md §6):
+/// Texel bit 15 decides blending in a semi-transparent textured primitive (docs/hardware/gpu.md §6):
 /// over a background of 10 red, texel 8000h|20 red averages to 15 (bit 15 kept), texel
 /// 20 red is written as is.
 #[test]
@@ -421,7 +421,7 @@ fn mask_check_with_blending() {
     assert_eq!(px(&g, 1, 0), 31 - 16, "31 - 16 drawn");
 }
 
-/// Lines (gpu.md §4): a shallow line steps Y from y0 + 0.5; when Y goes up the start is
+/// Lines (docs/hardware/gpu.md §4): a shallow line steps Y from y0 + 0.5; when Y goes up the start is
 /// lowered by 1024/2^32, so (0,1)-(4,0) reaches row 0 at the middle point:
 /// y = 1.5-e, 1.25-e, 1.0-e, 0.75-e, 0.5-e. Going down, (0,0)-(4,1): 0.5, 0.75, 1.0, ...
 /// X always starts at x0 + 0.5 - e: the steep (0,0)-(1,4) gives x = 0.5-e, 0.75-e, 1.0-e ->
@@ -445,7 +445,7 @@ fn line_start_bias() {
     }
 }
 
-/// Flat lines are dithered when E1.9 is set (gpu.md §6): 130 plus row 0 of the matrix
+/// Flat lines are dithered when E1.9 is set (docs/hardware/gpu.md §6): 130 plus row 0 of the matrix
 /// (-4, 0, -3, 1) gives 126, 130, 127, 131 -> 15, 16, 15, 16.
 #[test]
 fn flat_line_dithered() {
@@ -456,7 +456,7 @@ fn flat_line_dithered() {
     assert_eq!(got, [15, 16, 15, 16]);
 }
 
-/// Line size drop (gpu.md §4): |dx| = 1024 is dropped, 1023 drawn.
+/// Line size drop (docs/hardware/gpu.md §4): |dx| = 1024 is dropped, 1023 drawn.
 #[test]
 fn line_size_drop() {
     let mut g = gpu();
@@ -529,8 +529,8 @@ fn textured_triangle_4bit_with_transparent_texel() {
     }
 }
 
-/// An independent model of gpu.md §3 for the property test below, written directly from the
-/// fact sheet: i128 edge maths, the literal two-part walk with incremental steps (bottom-up
+/// An independent model of docs/hardware/gpu.md §3 for the property test below, written directly from the
+/// hardware reference: i128 edge maths, the literal two-part walk with incremental steps (bottom-up
 /// with pre-decrement for parts below a core vertex other than v0), and i32 gradients.
 mod model {
     pub struct V {
@@ -709,7 +709,7 @@ mod model {
         out
     }
 
-    /// 5-bit channel of an 8-bit value with optional dither at (x, y) (gpu.md §6).
+    /// 5-bit channel of an 8-bit value with optional dither at (x, y) (docs/hardware/gpu.md §6).
     pub fn channel(c: u32, x: i64, y: i64, dither: bool) -> u16 {
         let d = if dither {
             DITHER[(y & 3) as usize][(x & 3) as usize]
@@ -828,7 +828,7 @@ fn clut_latched_by_undrawn_primitive() {
     assert_eq!(px(&g, 0, 0), 0x001F);
 }
 
-/// An independent model of gpu.md §4 lines: every point the line plots inside `clip`, with
+/// An independent model of docs/hardware/gpu.md §4 lines: every point the line plots inside `clip`, with
 /// its 8-bit colour.
 fn model_line(
     ends: [(i64, i64, [i64; 3]); 2],
@@ -922,7 +922,7 @@ proptest! {
 }
 
 /// A vertical Gouraud line is not swapped (x0 > x1 is false), so its colour is stepped from
-/// the first vertex (gpu.md §4, Mednafen's `>`). Red 1 -> 14 over k = 6: step
+/// the first vertex (docs/hardware/gpu.md §4, Mednafen's `>`). Red 1 -> 14 over k = 6: step
 /// (13 << 12) / 6 = 8874, so at y = 3 the colour is (1 << 12 | 2048) + 3 * 8874 = 32766 -> 7
 /// -> 5-bit 0. Drawn from the other end, (14 << 12 | 2048) - 3 * 8874 = 32770 -> 8 -> 1.
 #[test]

@@ -26,7 +26,7 @@ fn script() -> (Vec<u32>, [usize; 2]) {
     w.push(0xE100_0008); // page 512, 4-bit
     // Raw 16x1 sprite through the CLUT: latches it.
     w.extend([0x6500_0000, xy(0, 100), 300 << 22, 1 << 16 | 16]);
-    // Overwrite the CLUT in VRAM with green; the latched entries stay (gpu.md §7).
+    // Overwrite the CLUT in VRAM with green; the latched entries stay (docs/hardware/gpu.md §7).
     w.extend([0x0200_FF00, xy(0, 300), 1 << 16 | 16]);
     // Raw textured triangle, split after its third word.
     let tri_start = w.len();

@@ -1,11 +1,11 @@
 //! The COP2 command word: opcode and the sf/lm/mx/v/cv fields, and each command's cycle
-//! count (gte.md §1).
+//! count (docs/hardware/gte.md §1).
 
-/// A decoded 25-bit COP2 command word (gte.md §1). Bits 20-24 are ignored by the hardware.
+/// A decoded 25-bit COP2 command word (docs/hardware/gte.md §1). Bits 20-24 are ignored by the hardware.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Command(u32);
 
-/// The 22 commands, by opcode (bits 0-5) (gte.md §1).
+/// The 22 commands, by opcode (bits 0-5) (docs/hardware/gte.md §1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Opcode {
     /// 01h perspective transform, single.
@@ -114,7 +114,7 @@ impl Opcode {
         }
     }
 
-    /// Cycles the command takes (gte.md §1), for an emulator to charge time.
+    /// Cycles the command takes (docs/hardware/gte.md §1), for an emulator to charge time.
     #[inline]
     pub const fn cycles(self) -> u32 {
         match self {
@@ -170,7 +170,7 @@ impl Opcode {
     ];
 }
 
-/// MVMVA matrix selector, bits 17-18 (gte.md §1, §8).
+/// MVMVA matrix selector, bits 17-18 (docs/hardware/gte.md §1, §8).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum MatrixSel {
     /// 0: rotation RT.
@@ -179,7 +179,7 @@ pub enum MatrixSel {
     Light,
     /// 2: light colour LCM.
     LightColor,
-    /// 3: the hardware's garbage matrix (gte.md §8).
+    /// 3: the hardware's garbage matrix (docs/hardware/gte.md §8).
     Garbage,
 }
 
@@ -203,7 +203,7 @@ pub enum TranslationSel {
     Translation,
     /// BK.
     Background,
-    /// FC, with the hardware bug (gte.md §8).
+    /// FC, with the hardware bug (docs/hardware/gte.md §8).
     FarColor,
     /// No add vector.
     None,
@@ -293,7 +293,7 @@ impl Command {
         }
     }
 
-    /// Cycle count (gte.md §1); `None` for undefined opcodes, which have no hardware timing data.
+    /// Cycle count (docs/hardware/gte.md §1); `None` for undefined opcodes, which have no hardware timing data.
     #[inline]
     pub const fn cycles(self) -> Option<u32> {
         match self.opcode() {
@@ -303,7 +303,7 @@ impl Command {
     }
 }
 
-/// Cycle count of a command word (gte.md §1); `None` for undefined opcodes.
+/// Cycle count of a command word (docs/hardware/gte.md §1); `None` for undefined opcodes.
 #[inline]
 pub const fn cycles(command: u32) -> Option<u32> {
     Command::new(command).cycles()

@@ -1,5 +1,5 @@
 //! The FLAG register (control register 31): saturation and overflow bits set by the last
-//! command (gte.md §3).
+//! command (docs/hardware/gte.md §3).
 
 /// A set of FLAG bits. Bits 0-11 are always zero; bit 31 is the OR of bits 30-23 and 18-13.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -68,9 +68,9 @@ impl Flag {
     /// Bit 12: IR0 saturated to 0..1000h.
     pub const IR0_SATURATED: Flag = Flag(1 << 12);
 
-    /// Bits that feed the error summary, bit 31 (gte.md §3).
+    /// Bits that feed the error summary, bit 31 (docs/hardware/gte.md §3).
     pub const ERROR_SOURCES: u32 = 0x7F87_E000;
-    /// Bits a CTC2 write to FLAG keeps (gte.md §2).
+    /// Bits a CTC2 write to FLAG keeps (docs/hardware/gte.md §2).
     pub const WRITABLE: u32 = 0x7FFF_F000;
 
     /// The flag set as FLAG reads it, from raw bits; bits 0-11 are dropped and bit 31

@@ -3,7 +3,7 @@
 //! Two faces: [`Gte`], the register-level engine an emulator drives (MTC2/MFC2/CTC2/CFC2 and
 //! the COP2 command word), and `typed` (feature `typed`, default), a fixed-point API for
 //! transforming and projecting vertices the PS1 way. The facts implemented are those of the
-//! GTE fact sheet (`gte.md`, cited by section); choices where hardware data is silent are
+//! GTE hardware reference (`docs/hardware/gte.md`, cited by section); choices where hardware data is silent are
 //! listed in `docs/gte.md`.
 //!
 //! Features: `typed` (default) the typed API and its `fixed` dependency; `divide-modes`
@@ -175,10 +175,10 @@ impl Gte {
     }
 
     /// Run the 25-bit COP2 command word (bits above 24 are ignored). FLAG is cleared first
-    /// and its bit 31 set from the error sources at the end (gte.md §3). Undefined opcodes
+    /// and its bit 31 set from the error sources at the end (docs/hardware/gte.md §3). Undefined opcodes
     /// clear FLAG and change nothing else (docs/gte.md, "Undefined opcodes").
     ///
-    /// Returns the command's cycle count (gte.md §1), or `None` for an undefined opcode.
+    /// Returns the command's cycle count (docs/hardware/gte.md §1), or `None` for an undefined opcode.
     #[inline]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let command = Command::new(command);

@@ -1,5 +1,5 @@
 //! The arithmetic every command shares: 44-bit MAC1-3 accumulation with per-step overflow
-//! flags and wrap, MAC0 flags, and the IR / colour saturation (gte.md §4).
+//! flags and wrap, MAC0 flags, and the IR / colour saturation (docs/hardware/gte.md §4).
 
 use crate::Gte;
 
@@ -24,7 +24,7 @@ pub const fn clamp(value: i64, min: i64, max: i64) -> (i64, bool) {
     }
 }
 
-/// Bits of the FLAG register, by position (gte.md §3).
+/// Bits of the FLAG register, by position (docs/hardware/gte.md §3).
 pub mod bit {
     /// MACn > 2^43 - 1: bit 31 - n.
     pub const fn mac_positive(n: usize) -> u32 {
@@ -61,7 +61,7 @@ pub mod bit {
 impl Gte {
     /// Accumulate into MACn (n = 1..3): start from `start` (an add-vector component already
     /// shifted left 12, or 0), add each product in turn, flag and wrap to 44 bits after every
-    /// addition (gte.md §4). Returns the wrapped 44-bit sum.
+    /// addition (docs/hardware/gte.md §4). Returns the wrapped 44-bit sum.
     #[inline(always)]
     pub(crate) fn accumulate(&mut self, n: usize, start: i64, products: &[i64]) -> i64 {
         let mut sum = start;
@@ -77,7 +77,7 @@ impl Gte {
         sum
     }
 
-    /// MACn = low 32 bits of (sum SAR shift) (gte.md §4).
+    /// MACn = low 32 bits of (sum SAR shift) (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn set_mac(&mut self, n: usize, sum: i64, shift: u32) -> i32 {
         let mac = (sum >> shift) as i32;
@@ -97,7 +97,7 @@ impl Gte {
         v as i16
     }
 
-    /// IRn = clamp(value) with FLAG bit 25-n (gte.md §4).
+    /// IRn = clamp(value) with FLAG bit 25-n (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) {
         let v = self.saturate_ir(n, value, lm);
@@ -111,7 +111,7 @@ impl Gte {
         self.set_ir(n, mac, lm);
     }
 
-    /// MAC0 from a 64-bit value: flags 16/15 on the full value, low 32 bits kept (gte.md §4).
+    /// MAC0 from a 64-bit value: flags 16/15 on the full value, low 32 bits kept (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn set_mac0(&mut self, value: i64) {
         self.flag_mac0(value);
@@ -129,7 +129,7 @@ impl Gte {
     }
 
     /// Colour FIFO push: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n; RGB2 gets
-    /// R | G << 8 | B << 16 | CODE << 24 (gte.md §4).
+    /// R | G << 8 | B << 16 | CODE << 24 (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn push_color(&mut self) {
         let mut packed = self.regs.rgbc & 0xFF00_0000;

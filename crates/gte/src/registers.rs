@@ -1,5 +1,5 @@
 //! The GTE register file: 32 data registers (MTC2/MFC2) and 32 control registers
-//! (CTC2/CFC2), with every read/write quirk of gte.md §2.
+//! (CTC2/CFC2), with every read/write quirk of docs/hardware/gte.md §2.
 
 use crate::flag::Flag;
 
@@ -90,7 +90,7 @@ const fn sext(value: i16) -> u32 {
     value as i32 as u32
 }
 
-/// Leading bits equal to bit 31, 1..=32 (gte.md §2, LZCR).
+/// Leading bits equal to bit 31, 1..=32 (docs/hardware/gte.md §2, LZCR).
 pub(crate) const fn leading_sign_bits(value: u32) -> u32 {
     if value & 0x8000_0000 != 0 {
         value.leading_ones()
@@ -99,7 +99,7 @@ pub(crate) const fn leading_sign_bits(value: u32) -> u32 {
     }
 }
 
-/// Pack IR1-3 as IRGB/ORGB read them: each clamp(IRn SAR 7, 0, 1Fh), 5:5:5 (gte.md §2).
+/// Pack IR1-3 as IRGB/ORGB read them: each clamp(IRn SAR 7, 0, 1Fh), 5:5:5 (docs/hardware/gte.md §2).
 pub(crate) const fn irgb(ir: [i16; 4]) -> u32 {
     const fn c(v: i16) -> u32 {
         let v = v >> 7;
@@ -137,7 +137,7 @@ fn write_matrix(m: &mut Matrix, index: u32, value: u32) {
 }
 
 impl Registers {
-    /// MFC2: read data register `reg & 31` (gte.md §2).
+    /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn read_data(&self, reg: u32) -> u32 {
         match reg & 31 {
@@ -158,7 +158,7 @@ impl Registers {
         }
     }
 
-    /// MTC2: write data register `reg & 31` (gte.md §2).
+    /// MTC2: write data register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn write_data(&mut self, reg: u32, value: u32) {
         match reg & 31 {
@@ -190,7 +190,7 @@ impl Registers {
         }
     }
 
-    /// CFC2: read control register `reg & 31` (gte.md §2).
+    /// CFC2: read control register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn read_control(&self, reg: u32) -> u32 {
         match reg & 31 {
@@ -211,7 +211,7 @@ impl Registers {
         }
     }
 
-    /// CTC2: write control register `reg & 31` (gte.md §2).
+    /// CTC2: write control register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn write_control(&mut self, reg: u32, value: u32) {
         match reg & 31 {

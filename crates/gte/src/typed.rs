@@ -3,7 +3,7 @@
 //!
 //! Every call writes the GTE registers a PS1 program would write, runs the same command word
 //! and reads the result registers back, so results are bit-identical to the register-level
-//! path (gte.md §5, §7, §8). The types say what the hardware stores: 1.3.12 matrices
+//! path (docs/hardware/gte.md §5, §7, §8). The types say what the hardware stores: 1.3.12 matrices
 //! ([`I4F12`]), 16-bit vertices, 32-bit translations, 16.16 screen offsets ([`I16F16`]), the
 //! unsigned 16-bit projection distance H, depth-cue DQA (8.8) and DQB (8.24).
 

@@ -1,10 +1,10 @@
 //! The UNR divide of RTPS/RTPT: H / SZ3 by a 257-entry reciprocal table and Newton-Raphson
-//! refinement, with the hardware's overflow rule (gte.md §6).
+//! refinement, with the hardware's overflow rule (docs/hardware/gte.md §6).
 
-/// Overflow result and the largest quotient: 1FFFFh (gte.md §6).
+/// Overflow result and the largest quotient: 1FFFFh (docs/hardware/gte.md §6).
 pub const QUOTIENT_MAX: u32 = 0x1_FFFF;
 
-/// The reciprocal seed table T[0..=256] (gte.md §6):
+/// The reciprocal seed table T[0..=256] (docs/hardware/gte.md §6):
 /// `T[i] = max(0, ((40000h div (i + 100h)) + 1) div 2 - 101h)`, built at compile time.
 pub(crate) const UNR_TABLE: [u8; 257] = build_table();
 
@@ -24,7 +24,7 @@ const fn build_table() -> [u8; 257] {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub enum DivideMode {
-    /// The console's table + Newton-Raphson divide (gte.md §6).
+    /// The console's table + Newton-Raphson divide (docs/hardware/gte.md §6).
     #[default]
     Unr,
     /// `round(H * 10000h / SZ3)` in integers, same overflow rule and 1FFFFh clamp.
@@ -34,12 +34,12 @@ pub enum DivideMode {
 }
 
 /// Whether `H / SZ3` overflows: the hardware computes a quotient only when `H < 2 * SZ3`
-/// (gte.md §6); this covers SZ3 = 0.
+/// (docs/hardware/gte.md §6); this covers SZ3 = 0.
 pub const fn divide_overflows(h: u16, sz3: u16) -> bool {
     (h as u32) >= 2 * (sz3 as u32)
 }
 
-/// The hardware UNR quotient `H * 10000h / SZ3` (gte.md §6). Returns the quotient
+/// The hardware UNR quotient `H * 10000h / SZ3` (docs/hardware/gte.md §6). Returns the quotient
 /// (0..=1FFFFh) and whether the divide overflowed (FLAG.17). The final clamp to 1FFFFh sets
 /// no flag.
 pub const fn unr_divide(h: u16, sz3: u16) -> (u32, bool) {
@@ -149,7 +149,7 @@ mod tests {
 
     #[test]
     fn final_clamp_cases_from_fact_sheet() {
-        // gte.md §6: FE3Fh/7F20h and F015h/780Bh reach 20000h before the clamp.
+        // docs/hardware/gte.md §6: FE3Fh/7F20h and F015h/780Bh reach 20000h before the clamp.
         assert_eq!(unr_divide(0xFE3F, 0x7F20), (QUOTIENT_MAX, false));
         assert_eq!(unr_divide(0xF015, 0x780B), (QUOTIENT_MAX, false));
     }

@@ -1,4 +1,4 @@
-//! Property tests of the register-level engine. Expected values come from the fact sheet's
+//! Property tests of the register-level engine. Expected values come from the hardware reference's
 //! rules evaluated independently here in i128 (never from the engine's own output).
 
 use gte::unr::{exact_divide, unr_divide};
@@ -243,7 +243,7 @@ proptest! {
         prop_assert_eq!(flag.intersects(Flag::MAC0_POSITIVE_OVERFLOW.union(Flag::MAC0_NEGATIVE_OVERFLOW)), mac0_out);
     }
 
-    /// Register read/write rules (gte.md §2).
+    /// Register read/write rules (docs/hardware/gte.md §2).
     #[test]
     fn register_quirks(value in any::<u32>()) {
         let mut gte = Gte::new();
@@ -335,11 +335,11 @@ fn divide_boundaries() {
     assert!(!of);
     // 0x1001 * 65536 / 0x801 = 131040.02: UNR within 3 units.
     assert!((q as i64 - 131_040).abs() <= 3);
-    // gte.md §6: FE3Fh/7F20h reaches 20000h and is clamped, with no flag.
+    // docs/hardware/gte.md §6: FE3Fh/7F20h reaches 20000h and is clamped, with no flag.
     assert_eq!(unr_divide(0xFE3F, 0x7F20), (0x1FFFF, false));
 }
 
-/// Cycle counts (gte.md §1).
+/// Cycle counts (docs/hardware/gte.md §1).
 #[test]
 fn cycle_counts() {
     let expected = [

@@ -1,6 +1,6 @@
 //! The typed API gives exactly what the register-level path gives: each property performs
 //! the same operation by hand (register writes, command words assembled from the fact
-//! sheet's bit layout, gte.md §1) and compares.
+//! sheet's bit layout, docs/hardware/gte.md §1) and compares.
 
 #![cfg(feature = "typed")]
 
@@ -272,7 +272,7 @@ fn similar_triangles() {
 proptest! {
     /// Matrix, translation and projection types survive the trip through the registers: what
     /// the set-up calls write reads back through CFC2 as the same bits (H and the 16-bit
-    /// registers sign-extended, gte.md §2).
+    /// registers sign-extended, docs/hardware/gte.md §2).
     #[test]
     fn setup_round_trips_through_registers(s in setup()) {
         let g = typed(&s);
@@ -333,7 +333,7 @@ fn on_screen_setup() -> impl Strategy<Value = Setup> {
         })
 }
 
-/// Screen X/Y before truncation, computed from the fact sheet in i128
+/// Screen X/Y before truncation, computed from the hardware reference in i128
 /// (docs/hardware/gte.md §5 steps 1-6, sf = 1, lm = 0): the 44-bit accumulator wraps modulo 2^44, IRn saturates MACn to 16 bits,
 /// SZ3 saturates acc3 SAR 12 to 0..FFFFh, and the sum quotient * IRn + OFn is clamped to the
 /// screen range. `quotient` is the divide of H by SZ3.

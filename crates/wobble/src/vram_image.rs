@@ -114,7 +114,7 @@ pub fn display_image(vram: &[u16], area: DisplayArea, expand: Expand) -> RgbImag
 }
 
 /// A 256x256 texture page at (`page_x`, `page_y`) seen through the CLUT at (`clut_x`,
-/// `clut_y`) as the GPU samples it (gpu.md §7). Texels equal to 0000h are transparent and
+/// `clut_y`) as the GPU samples it (docs/hardware/gpu.md §7). Texels equal to 0000h are transparent and
 /// written with alpha 0.
 pub fn texture_page_image(
     vram: &[u16],

@@ -274,7 +274,7 @@ fn truncated_stream_gives_a_report_with_the_cut_command_marked() {
 #[test]
 fn draw_covering_all_vram() {
     // Fills of the whole VRAM (1024x511 and the last line: fill heights are 9 bits), then
-    // a 1023x511 rectangle: scaled-down images, exact counts (gpu.md §8: w = ((3F1h & 3FFh)
+    // a 1023x511 rectangle: scaled-down images, exact counts (docs/hardware/gpu.md §8: w = ((3F1h & 3FFh)
     // + Fh) & ~Fh = 1024).
     let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
                 gp0 02102030 00000000 01ff03f1\n\

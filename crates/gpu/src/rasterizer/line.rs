@@ -1,4 +1,4 @@
-//! Line rasterization (gpu.md §4): both endpoints drawn, 32.32 positions with a half-pixel
+//! Line rasterization (docs/hardware/gpu.md §4): both endpoints drawn, 32.32 positions with a half-pixel
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
 use super::{
@@ -35,7 +35,7 @@ pub(super) fn draw<
     p0.y = wrap11(p0.y);
     p1.x = wrap11(p1.x);
     p1.y = wrap11(p1.y);
-    // Size drop (gpu.md §4). A line clipped away still walks its points (their cost is
+    // Size drop (docs/hardware/gpu.md §4). A line clipped away still walks its points (their cost is
     // counted); each is rejected by the per-point area test below.
     let coverage = line_coverage([(p0.x, p0.y), (p1.x, p1.y)], &state.area);
     if coverage == Coverage::Dropped(DropReason::SizeLimit) {

@@ -1,4 +1,4 @@
-//! Rasterization of decoded primitives into VRAM (gpu.md §3-§6).
+//! Rasterization of decoded primitives into VRAM (docs/hardware/gpu.md §3-§6).
 //!
 //! Each primitive picks, once, a span routine monomorphised for exactly the features it uses
 //! (Gouraud, texture depth, raw texture, blending, dithering, mask check): a flat untextured
@@ -77,7 +77,7 @@ pub(crate) struct PixelEnv<'a> {
     pub sampler: Sampler<'a>,
 }
 
-/// Shade and write one pixel (gpu.md §6): texel fetch and transparency, modulation or raw
+/// Shade and write one pixel (docs/hardware/gpu.md §6): texel fetch and transparency, modulation or raw
 /// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
 /// `rgb` holds 8-bit channels; `shade` is the dither cell's table for this pixel (or the
 /// undithered one).
@@ -113,7 +113,7 @@ pub(crate) fn shade_pixel<
         let c = if RAW {
             t & 0x7FFF
         } else {
-            // (gpu.md §6) c5 = clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3.
+            // (docs/hardware/gpu.md §6) c5 = clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3.
             let t = t as i32;
             pack555(
                 c5(((t & 0x1F) * rgb[0]) >> 4),
@@ -131,7 +131,7 @@ pub(crate) fn shade_pixel<
     vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
 }
 
-/// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (gpu.md §3.4, §4).
+/// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (docs/hardware/gpu.md §3.4, §4).
 /// `steps` > 0.
 pub(crate) fn step_away_from_zero(delta: i32, steps: i32) -> i64 {
     let n = (delta as i64) << 32;
@@ -254,23 +254,23 @@ impl Rows {
     }
 }
 
-/// Sign-extend an 11-bit coordinate (gpu.md §2, §3.5).
+/// Sign-extend an 11-bit coordinate (docs/hardware/gpu.md §2, §3.5).
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
     (v << 21) >> 21
 }
 
-/// Why the rasterizer draws nothing of a primitive (gpu.md §3-§5).
+/// Why the rasterizer draws nothing of a primitive (docs/hardware/gpu.md §3-§5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum DropReason {
     /// A vertex pair is 1024 or more apart in X or 512 or more in Y, after the drawing
-    /// offset and the 11-bit wrap: the whole triangle or line is dropped (gpu.md §3.2, §4).
+    /// offset and the 11-bit wrap: the whole triangle or line is dropped (docs/hardware/gpu.md §3.2, §4).
     SizeLimit,
-    /// A triangle whose vertices are collinear (the gradient denominator is 0, gpu.md §3.6),
-    /// or a rectangle of width or height 0 (gpu.md §5).
+    /// A triangle whose vertices are collinear (the gradient denominator is 0, docs/hardware/gpu.md §3.6),
+    /// or a rectangle of width or height 0 (docs/hardware/gpu.md §5).
     ZeroArea,
     /// The primitive's bounding box lies entirely outside the drawing area (E3/E4), so no
-    /// pixel survives the clip (gpu.md §3.5, §4, §5).
+    /// pixel survives the clip (docs/hardware/gpu.md §3.5, §4, §5).
     Clipped,
 }
 
@@ -331,7 +331,7 @@ impl Coverage {
     }
 }
 
-/// The size-drop test on wrapped vertices (gpu.md §3.2, §4).
+/// The size-drop test on wrapped vertices (docs/hardware/gpu.md §3.2, §4).
 #[inline(always)]
 fn exceeds_size_limit(a: (i32, i32), b: (i32, i32)) -> bool {
     (a.0 - b.0).abs() >= 1024 || (a.1 - b.1).abs() >= 512
@@ -357,7 +357,7 @@ fn clip_box(x0: i32, x1: i32, y0: i32, y1: i32, area: &DrawingArea) -> Coverage 
 }
 
 /// The triangle tests on wrapped vertices: size drop, zero area, drawing-area clip. Rows
-/// `[min y, max y)` and columns `[min x, max x)` bound the spans (gpu.md §3.4-§3.5), so
+/// `[min y, max y)` and columns `[min x, max x)` bound the spans (docs/hardware/gpu.md §3.4-§3.5), so
 /// the inclusive box of the vertices contains every drawn pixel.
 #[inline(always)]
 pub(crate) fn triangle_coverage(p: [(i32, i32); 3], area: &DrawingArea) -> Coverage {
@@ -365,7 +365,7 @@ pub(crate) fn triangle_coverage(p: [(i32, i32); 3], area: &DrawingArea) -> Cover
     if exceeds_size_limit(a, b) || exceeds_size_limit(b, c) || exceeds_size_limit(a, c) {
         return Coverage::Dropped(DropReason::SizeLimit);
     }
-    // Twice the signed area: the gradient denominator up to sign (gpu.md §3.6).
+    // Twice the signed area: the gradient denominator up to sign (docs/hardware/gpu.md §3.6).
     let cross = (b.0 - a.0) as i64 * (c.1 - b.1) as i64 - (c.0 - b.0) as i64 * (b.1 - a.1) as i64;
     if cross == 0 {
         return Coverage::Dropped(DropReason::ZeroArea);
@@ -379,7 +379,7 @@ pub(crate) fn triangle_coverage(p: [(i32, i32); 3], area: &DrawingArea) -> Cover
     )
 }
 
-/// The line tests on wrapped endpoints: size drop, drawing-area clip (gpu.md §4). Points
+/// The line tests on wrapped endpoints: size drop, drawing-area clip (docs/hardware/gpu.md §4). Points
 /// lie between the endpoints; negative positions wrap to 1024 and above (`& 2047`), past
 /// any drawing area.
 #[inline(always)]
@@ -391,21 +391,21 @@ pub(crate) fn line_coverage(p: [(i32, i32); 2], area: &DrawingArea) -> Coverage 
     clip_box(a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1), area)
 }
 
-/// What the rasterizer does with a triangle under a drawing area (gpu.md §3): the same
+/// What the rasterizer does with a triangle under a drawing area (docs/hardware/gpu.md §3): the same
 /// tests [`draw_triangle`] applies before drawing.
 pub fn classify_triangle(tri: &Triangle, area: &DrawingArea) -> Coverage {
     let v = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
     triangle_coverage(v, area)
 }
 
-/// What the rasterizer does with a line segment under a drawing area (gpu.md §4): the
+/// What the rasterizer does with a line segment under a drawing area (docs/hardware/gpu.md §4): the
 /// same tests [`draw_line`] applies before drawing.
 pub fn classify_line(line: &Line, area: &DrawingArea) -> Coverage {
     let v = line.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
     line_coverage(v, area)
 }
 
-/// What the rasterizer does with a rectangle under a drawing area (gpu.md §5): the same
+/// What the rasterizer does with a rectangle under a drawing area (docs/hardware/gpu.md §5): the same
 /// clip [`draw_rectangle`] computes.
 pub fn classify_rectangle(rect: &Rectangle, area: &DrawingArea) -> Coverage {
     if rect.width == 0 || rect.height == 0 {
@@ -441,7 +441,7 @@ fn env<'a>(
     }
 }
 
-/// Draw one triangle (gpu.md §3): size drop, fill rule, attribute stepping, texture,
+/// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
 /// blending, dithering, mask. Returns what was drawn.
 pub fn draw_triangle(
     vram: &mut Vram,
@@ -502,7 +502,7 @@ pub fn draw_triangle_precise(
     }
 }
 
-/// Draw one line segment, both endpoints included (gpu.md §4). Returns the points stepped.
+/// Draw one line segment, both endpoints included (docs/hardware/gpu.md §4). Returns the points stepped.
 pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
     draw_line_rows(vram, state, line, Rows::All)
 }
@@ -527,7 +527,7 @@ pub fn draw_line_rows(vram: &mut Vram, state: &DrawState, line: &Line, rows: Row
     dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
 }
 
-/// Draw one rectangle (gpu.md §5). Returns what was drawn.
+/// Draw one rectangle (docs/hardware/gpu.md §5). Returns what was drawn.
 pub fn draw_rectangle(
     vram: &mut Vram,
     state: &DrawState,

@@ -1,7 +1,7 @@
 //! A non-hardware triangle path for accuracy studies: sub-pixel vertex positions and
 //! perspective-correct texture coordinates, neither of which the console has (its vertices
 //! are whole pixels and its texture coordinates are stepped affinely in screen space,
-//! gpu.md §2-§3). Everything after the coordinates (texel fetch, CLUT, modulation,
+//! docs/hardware/gpu.md §2-§3). Everything after the coordinates (texel fetch, CLUT, modulation,
 //! dithering, blending, mask) is the hardware pixel pipeline of `shade_pixel`.
 //!
 //! Coverage: pixel (x, y) is sampled at its integer coordinate; an edge function in 1/16

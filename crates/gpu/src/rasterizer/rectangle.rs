@@ -1,4 +1,4 @@
-//! Rectangle (sprite) rasterization (gpu.md §5): no dithering, U/V counted per pixel and
+//! Rectangle (sprite) rasterization (docs/hardware/gpu.md §5): no dithering, U/V counted per pixel and
 //! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
 //! to the drawing area.
 
@@ -9,7 +9,7 @@ use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
 /// The drawn columns `[x_start, x_end)` and rows `[y_start, y_end)`: the rectangle at its
-/// wrapped origin clipped to the drawing area (gpu.md §5); `None` when nothing is left.
+/// wrapped origin clipped to the drawing area (docs/hardware/gpu.md §5); `None` when nothing is left.
 #[inline(always)]
 pub(super) fn clip(rect: &Rectangle, area: &DrawingArea) -> Option<(i32, i32, i32, i32)> {
     let (x0, y0) = (wrap11(rect.origin.x), wrap11(rect.origin.y));

@@ -1,4 +1,4 @@
-//! Triangle rasterization (gpu.md §3): core vertex, Y sort, 32.32 edge walking with the
+//! Triangle rasterization (docs/hardware/gpu.md §3): core vertex, Y sort, 32.32 edge walking with the
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
@@ -15,17 +15,17 @@ struct Vtx {
     attr: [i32; 5],
 }
 
-/// An edge's start: x + 1 minus a small epsilon, in 32.32 fixed point (gpu.md §3.4).
+/// An edge's start: x + 1 minus a small epsilon, in 32.32 fixed point (docs/hardware/gpu.md §3.4).
 fn edge_start(x: i32) -> i64 {
     ((x as i64) << 32) + (1i64 << 32) - (1 << 11)
 }
 
-/// An edge's step per line, rounded away from zero (gpu.md §3.4). `dy` > 0.
+/// An edge's step per line, rounded away from zero (docs/hardware/gpu.md §3.4). `dy` > 0.
 fn edge_step(dx: i32, dy: i32) -> i64 {
     super::step_away_from_zero(dx, dy)
 }
 
-/// d/dx and d/dy of one attribute in 8.24 (gpu.md §3.6), i32 maths with truncating division.
+/// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), i32 maths with truncating division.
 fn gradient(v: &[Vtx; 3], i: usize, den: i64) -> (u32, u32) {
     let (a, b, c) = (&v[0], &v[1], &v[2]);
     let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
@@ -61,12 +61,12 @@ pub(super) fn draw<
             p.v as i32,
         ],
     });
-    // Size drop, zero area, clipped away (gpu.md §3.2, §3.6).
+    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
     let corners = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
     if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
         return drawn;
     }
-    // Core vertex from X before sorting (gpu.md §3.3).
+    // Core vertex from X before sorting (docs/hardware/gpu.md §3.3).
     let mut core = if v[1].x <= v[0].x {
         if v[2].x <= v[1].x { 2 } else { 1 }
     } else if v[2].x < v[0].x {
@@ -186,7 +186,7 @@ pub(super) fn draw<
         }
     };
 
-    // The two parts (gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows [b.y, c.y)
+    // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows [b.y, c.y)
     // bounded by b->c. The base edge a->c is always measured from a. A part touching the core
     // vertex from below is walked bottom-up: its bound edge starts at the lower vertex and
     // each row pre-decrements. The core vertex fixes the directions: core a, both parts

@@ -1,9 +1,9 @@
-//! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (gte.md §8).
+//! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
 
 impl Gte {
-    /// Interpolate `input` towards the far colour by IR0 (gte.md §8): first
+    /// Interpolate `input` towards the far colour by IR0 (docs/hardware/gte.md §8): first
     /// MACn = ((FCn << 12) minus in_n) SAR sf with IRn saturated to the lm=0 range whatever lm
     /// is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm.
     #[inline(always)]
@@ -37,7 +37,7 @@ impl Gte {
         self.push_color();
     }
 
-    /// DPCT: DPCS three times on RGB0, the FIFO bottom, re-read after each push (gte.md §8).
+    /// DPCT: DPCS three times on RGB0, the FIFO bottom, re-read after each push (docs/hardware/gte.md §8).
     pub(crate) fn dpct(&mut self, shift: u32, lm: bool) {
         for _ in 0..3 {
             let input = Self::color_input(self.regs.rgb[0]);

@@ -1,4 +1,4 @@
-//! Lighting commands: NCS/NCT, NCCS/NCCT, NCDS/NCDT, CC and CDP (gte.md §8).
+//! Lighting commands: NCS/NCT, NCCS/NCCT, NCDS/NCDT, CC and CDP (docs/hardware/gte.md §8).
 
 use crate::Gte;
 use crate::commands::matrix::widen;

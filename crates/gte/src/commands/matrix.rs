@@ -1,5 +1,5 @@
 //! Matrix-vector commands: MVMVA (with the FC and mx=3 hardware bugs), SQR and OP
-//! (gte.md §8).
+//! (docs/hardware/gte.md §8).
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
@@ -11,7 +11,7 @@ pub(crate) fn widen(m: &Matrix) -> [[i64; 3]; 3] {
 }
 
 impl Gte {
-    /// MACn/IRn for n = 1..3 from `t << 12 + m * v` (gte.md §4).
+    /// MACn/IRn for n = 1..3 from `t << 12 + m * v` (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn multiply_add(
         &mut self,
@@ -41,14 +41,14 @@ impl Gte {
         ]
     }
 
-    /// MVMVA: MAC/IR = cv + mx * v with the selected operands (gte.md §8).
+    /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
     pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
         let m = match c.mx() {
             MatrixSel::Rotation => widen(&self.regs.rt),
             MatrixSel::Light => widen(&self.regs.llm),
             MatrixSel::LightColor => widen(&self.regs.lcm),
             MatrixSel::Garbage => {
-                // Rows [-(R<<4), R<<4, IR0], [RT13]x3, [RT22]x3 (gte.md §8).
+                // Rows [-(R<<4), R<<4, IR0], [RT13]x3, [RT22]x3 (docs/hardware/gte.md §8).
                 let r = ((self.regs.rgbc & 0xFF) as i64) << 4;
                 let rt13 = self.regs.rt[0][2] as i64;
                 let rt22 = self.regs.rt[1][1] as i64;
@@ -74,7 +74,7 @@ impl Gte {
     }
 
     /// cv=2: per row, FC<<12 + M_n1*V1 is formed and flagged (44-bit and an IR check with the
-    /// lm=0 range) and discarded; the result is (M_n2*V2 + M_n3*V3) SAR sf (gte.md §8).
+    /// lm=0 range) and discarded; the result is (M_n2*V2 + M_n3*V3) SAR sf (docs/hardware/gte.md §8).
     fn mvmva_far_color_bug(&mut self, m: &[[i64; 3]; 3], v: [i64; 3], shift: u32, lm: bool) {
         let fc = self.regs.fc;
         for row in 0..3 {
@@ -86,7 +86,7 @@ impl Gte {
         }
     }
 
-    /// SQR: MACn = IRn^2 SAR sf, IRn by lm (gte.md §8).
+    /// SQR: MACn = IRn^2 SAR sf, IRn by lm (docs/hardware/gte.md §8).
     pub(crate) fn sqr(&mut self, shift: u32, lm: bool) {
         let ir = self.ir_vector();
         for (n, v) in ir.into_iter().enumerate() {
@@ -95,7 +95,7 @@ impl Gte {
         }
     }
 
-    /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (gte.md §8).
+    /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (docs/hardware/gte.md §8).
     pub(crate) fn op(&mut self, shift: u32, lm: bool) {
         let d = [
             self.regs.rt[0][0] as i64,

@@ -1,4 +1,4 @@
-//! RTPS/RTPT: rotate, translate and perspective-project vertices (gte.md §5).
+//! RTPS/RTPT: rotate, translate and perspective-project vertices (docs/hardware/gte.md §5).
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;
@@ -44,7 +44,7 @@ impl Gte {
         self.project_vertex::<MODE>(2, shift, lm, true);
     }
 
-    /// One vertex of RTPS/RTPT (gte.md §5 steps 1-7), with divide `MODE`.
+    /// One vertex of RTPS/RTPT (docs/hardware/gte.md §5 steps 1-7), with divide `MODE`.
     #[inline(always)]
     fn project_vertex<const MODE: u8>(
         &mut self,

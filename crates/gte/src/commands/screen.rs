@@ -1,11 +1,11 @@
 //! Screen-space commands: NCLIP (winding of SXY0-2) and AVSZ3/AVSZ4 (ordering-table depth)
-//! (gte.md §7).
+//! (docs/hardware/gte.md §7).
 
 use crate::Gte;
 use crate::mac::{bit, clamp};
 
 impl Gte {
-    /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (gte.md §7).
+    /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md §7).
     pub(crate) fn nclip(&mut self) {
         let (x0, y0) = self.regs.sxy_at(0);
         let (x1, y1) = self.regs.sxy_at(1);
@@ -17,14 +17,14 @@ impl Gte {
         self.set_mac0(area);
     }
 
-    /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (gte.md §7).
+    /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
     pub(crate) fn avsz3(&mut self) {
         let sz = self.regs.sz;
         let sum = sz[1] as i64 + sz[2] as i64 + sz[3] as i64;
         self.average_z(self.regs.zsf3 as i64 * sum);
     }
 
-    /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (gte.md §7).
+    /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
     pub(crate) fn avsz4(&mut self) {
         let sz = self.regs.sz;
         let sum = sz[0] as i64 + sz[1] as i64 + sz[2] as i64 + sz[3] as i64;

@@ -252,7 +252,7 @@ fn prim_json(p: &Primitive) -> Value {
         Primitive::Line(..) => "line",
         Primitive::Rectangle(..) => "rectangle",
     };
-    // Outline corners wrapped to 11 bits like the rasterizer's vertices (gpu.md §3.5).
+    // Outline corners wrapped to 11 bits like the rasterizer's vertices (docs/hardware/gpu.md §3.5).
     let wrap = |v: i32| (v << 21) >> 21;
     let pts: Vec<[i32; 2]> = p
         .outline()

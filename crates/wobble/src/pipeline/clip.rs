@@ -7,7 +7,7 @@ use gte::Flag;
 use gte::typed::I4F12;
 
 /// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
-/// clamped to 0), divide overflow (SZ3 <= H/2, too near), SX2/SY2 saturated (gte.md §3,
+/// clamped to 0), divide overflow (SZ3 <= H/2, too near), SX2/SY2 saturated (docs/hardware/gte.md §3,
 /// §5 steps 4 and 6, §6).
 const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
     .union(Flag::SX2_SATURATED)
@@ -18,9 +18,9 @@ const DROP_FLAGS: Flag = Flag::DIVIDE_OVERFLOW
 #[derive(Clone, Copy, Debug)]
 pub(super) enum Verdict {
     /// Discarded whole: a vertex behind or too near the camera (SZ3 saturated, divide
-    /// overflow), a saturated SX/SY, or a size the GPU would drop (gpu.md §3).
+    /// overflow), a saturated SX/SY, or a size the GPU would drop (docs/hardware/gpu.md §3).
     Drop(super::trace::DropCause),
-    /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (gte.md §7).
+    /// Back face: NCLIP <= 0, the first three vertices not clockwise on screen (docs/hardware/gte.md §7).
     Cull,
     /// Entirely outside the screen.
     Offscreen,
@@ -44,7 +44,7 @@ fn bounds(points: &[(i16, i16)]) -> (i32, i32, i32, i32) {
     )
 }
 
-/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (gpu.md §3).
+/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (docs/hardware/gpu.md §3).
 fn gpu_drops(triangle: &[(i16, i16)]) -> bool {
     let (x0, x1, y0, y1) = bounds(triangle);
     x1 - x0 >= 1024 || y1 - y0 >= 512
@@ -73,7 +73,7 @@ pub(super) fn classify(
     if x1 < 0 || x0 >= w || y1 < 0 || y0 >= h {
         return Verdict::Offscreen;
     }
-    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (gpu.md §3).
+    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (docs/hardware/gpu.md §3).
     if gpu_drops(&xy[..3]) || (quad && gpu_drops(&xy[1..])) {
         return Verdict::Drop(super::trace::DropCause::SizeLimit);
     }

@@ -132,7 +132,7 @@ fn light(
             }
         }
         // NCDT/NCDS fade by IR0 as the last RTPT/RTPS left it: one factor
-        // for the whole polygon, from its last vertex (gte.md §5 step 7).
+        // for the whole polygon, from its last vertex (docs/hardware/gte.md §5 step 7).
         (true, true) => {
             let c = g.normal_color_depth_triple(normals, base);
             color[..3].copy_from_slice(&c);
@@ -219,7 +219,7 @@ impl Renderer {
             ..Projection::default()
         });
         if let Some(fog) = &scene.fog {
-            // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (gte.md §8).
+            // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (docs/hardware/gte.md §8).
             g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
         }
         let mut trace = self.trace.as_deref_mut();

@@ -214,7 +214,7 @@ impl Renderer {
             let p = alloc
                 .place(&t.name, &t.texture)
                 .map_err(RenderError::Vram)?;
-            // A textured polygon blends only the texels with bit 15 set (gpu.md §1): a texture
+            // A textured polygon blends only the texels with bit 15 set (docs/hardware/gpu.md §1): a texture
             // worn by a semi-transparent material gets bit 15 on every texel colour except
             // transparent 0000h.
             let blended = scene

@@ -1,6 +1,6 @@
 //! The ordering-table stage: each projected polygon becomes a GP0 packet (flat or Gouraud,
 //! textured or not, semi-transparent or not) linked into the ordering table at its depth
-//! (gpu.md §2, §6).
+//! (docs/hardware/gpu.md §2, §6).
 
 use super::{FrameStats, Renderer};
 
@@ -71,7 +71,7 @@ impl Renderer {
             }
             // An untextured polygon has no texpage attribute to carry its blend mode: a
             // draw-mode packet (E1) linked after it at the same entry comes out just before
-            // it (gpu.md §2, §6).
+            // it (docs/hardware/gpu.md §2, §6).
             if let (None, Some(mode)) = (f.texture, f.blend) {
                 let e1 = 0xE100_0000 | (dither as u32) << 9 | u32::from(mode & 3) << 5;
                 // A full primitive buffer leaves the polygon in the default mode.

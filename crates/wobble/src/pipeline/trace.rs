@@ -10,10 +10,10 @@ use gpu::Gpu;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DropCause {
     /// A vertex behind or too near the camera (SZ3 saturated, divide overflow), or a
-    /// saturated SX/SY (gte.md §5, §6).
+    /// saturated SX/SY (docs/hardware/gte.md §5, §6).
     NearPlane,
     /// Bigger on screen than the GPU draws: a vertex pair 1024 or more apart in X or 512 in
-    /// Y (gpu.md §3).
+    /// Y (docs/hardware/gpu.md §3).
     SizeLimit,
 }
 

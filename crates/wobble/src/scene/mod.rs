@@ -85,7 +85,7 @@ impl Default for Light {
 }
 
 /// Depth cueing (fog): colours fade towards `color` with depth, through the GTE's depth-cue
-/// factor IR0 = (DQB + DQA * H/SZ) / 4096 (gte.md §5 step 7) and NCDT/NCDS or DPCS (gte.md
+/// factor IR0 = (DQB + DQA * H/SZ) / 4096 (docs/hardware/gte.md §5 step 7) and NCDT/NCDS or DPCS (docs/hardware/gte.md
 /// §8). IR0 is linear in 1/SZ, so the fade runs from nothing at SZ = `near` to all fog at
 /// SZ = `far` and beyond.
 #[derive(Clone, Copy, Debug, PartialEq, Deserialize)]

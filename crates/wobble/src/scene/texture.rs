@@ -1,5 +1,5 @@
 //! Textures: RGBA images prepared as 4-bit or 8-bit CLUT textures, or 15-bit direct ones,
-//! in the GPU's 1555 format (gpu.md §1, §7); the palette choice is in `quantize`.
+//! in the GPU's 1555 format (docs/hardware/gpu.md §1, §7); the palette choice is in `quantize`.
 
 use super::quantize;
 use std::fmt;

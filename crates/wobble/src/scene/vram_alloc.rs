@@ -1,4 +1,4 @@
-//! Placement of textures and CLUTs in VRAM beside two display buffers (gpu.md §7).
+//! Placement of textures and CLUTs in VRAM beside two display buffers (docs/hardware/gpu.md §7).
 //!
 //! Layout: display buffers at (0, 0) and (0, height) (`width` x `height` each, height at
 //! most 256); texture pages (64-halfword columns, rows at y = 0 and 256) to the right of the
