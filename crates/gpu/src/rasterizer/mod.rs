@@ -165,7 +165,7 @@ pub(crate) fn fill_flat_span(
 /// the interlace flag affects GP0 drawing). Chosen once per primitive: an unfiltered
 /// primitive walks its rows as before, a filtered one walks every second row.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Rows {
+pub(crate) enum Rows {
     /// Every line.
     #[default]
     All,
@@ -453,7 +453,7 @@ pub fn draw_triangle(
 }
 
 /// [`draw_triangle`] writing only the lines `rows` keeps.
-pub fn draw_triangle_rows(
+pub(crate) fn draw_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
@@ -509,7 +509,12 @@ pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
 
 /// [`draw_line`] writing only the lines `rows` keeps. Lines test each pixel's row, so the
 /// filter is a const parameter: an unfiltered line has no row test.
-pub fn draw_line_rows(vram: &mut Vram, state: &DrawState, line: &Line, rows: Rows) -> DrawCount {
+pub(crate) fn draw_line_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    line: &Line,
+    rows: Rows,
+) -> DrawCount {
     let vram = vram.as_array_mut();
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
@@ -538,7 +543,7 @@ pub fn draw_rectangle(
 }
 
 /// [`draw_rectangle`] writing only the lines `rows` keeps.
-pub fn draw_rectangle_rows(
+pub(crate) fn draw_rectangle_rows(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
