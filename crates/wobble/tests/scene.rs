@@ -300,5 +300,8 @@ fn example_floor_reaches_the_bottom_of_the_screen() {
     let background = (0..img.width())
         .filter(|&x| *img.get_pixel(x, bottom) == sky)
         .count();
-    assert_eq!(background, 0, "{background} background pixels on the bottom row");
+    assert_eq!(
+        background, 0,
+        "{background} background pixels on the bottom row"
+    );
 }
