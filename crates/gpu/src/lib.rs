@@ -22,6 +22,8 @@ pub mod ordering_table;
 pub mod primitive;
 pub mod rasterizer;
 #[cfg(feature = "serde")]
+mod save;
+#[cfg(feature = "serde")]
 mod serde_array;
 pub mod state;
 pub mod texture;
@@ -38,6 +40,8 @@ pub use dma::{
 };
 pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 pub use gp0::PendingInput;
+#[cfg(feature = "serde")]
+pub use save::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState, StateError};
 use state::DrawState;
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
@@ -125,9 +129,16 @@ impl core::fmt::Debug for Vram {
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
 #[derive(Clone, Debug)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature the whole state serializes; deserializing checks every field
+/// against what the hardware can reach ([`StateError`]). [`Gpu::save_state`] adds a format
+/// header and version.
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "save::GpuFields")
+)]
 pub struct Gpu {
-    vram: Vram,
     draw: DrawState,
     clut: ClutCache,
     gp0: gp0::Gp0State,
@@ -140,6 +151,8 @@ pub struct Gpu {
     texture_disable_allowed: bool,
     drawing: drawing::Drawing,
     timing: timing::Timing,
+    /// Last, so the other fields lead a serialized state.
+    vram: Vram,
 }
 
 impl Gpu {

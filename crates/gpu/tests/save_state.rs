@@ -101,3 +101,217 @@ fn bad_vram_is_an_error() {
     let back: Gpu = serde_json::from_value(value).expect("exact length accepted");
     assert_eq!(back.vram().pixel(5, 0), 7);
 }
+
+// ---------------------------------------------------------------------------------------
+// Versioned save states (`Gpu::save_state` / `SaveState`).
+
+use gpu::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState};
+use proptest::prelude::*;
+
+fn save(g: &Gpu) -> Vec<u8> {
+    postcard::to_allocvec(&g.save_state()).expect("serializes")
+}
+
+fn load(bytes: &[u8]) -> Result<Gpu, postcard::Error> {
+    postcard::from_bytes::<SaveState>(bytes).map(SaveState::into_gpu)
+}
+
+/// A GPU with state in every part: mid CPU-to-VRAM transfer, a VRAM-to-CPU transfer half
+/// read, latched CLUT, queued FIFO words, a raised IRQ not yet reported, interlace.
+fn busy_gpu() -> Gpu {
+    let (words, _) = script();
+    let mut g = Gpu::new();
+    g.gp1(0x0800_0024); // 480i
+    g.gp0_words(&words);
+    g.run(300_000);
+    g.gp0_words(&[0xC000_0000, xy(0, 100), 2 << 16 | 4]);
+    g.gpuread();
+    g.gp0(0x1F00_0000);
+    // A large fill keeps the GPU busy; the next commands wait in the FIFO.
+    g.gp0_words(&[0x0200_00FF, 0, 256 << 16 | 512]);
+    g.gp0_words(&[0x2000_00FF, xy(0, 0), xy(8, 0), xy(0, 8)]);
+    g.gp0_words(&[0xA000_0000, xy(200, 200), 2 << 16 | 2, 0x1234_5678]);
+    g
+}
+
+/// The fields of the `Gpu` value (the order a positional format writes them).
+fn body_json(g: &Gpu) -> serde_json::Value {
+    serde_json::to_value(g).expect("serializes")
+}
+
+#[test]
+fn header_then_body_round_trips() {
+    let g = busy_gpu();
+    assert!(g.pending_input().is_some());
+    assert_eq!(g.gpustat() >> 27 & 1, 1, "VRAM-to-CPU data waiting");
+    let bytes = save(&g);
+    // postcard: magic and version as varints first.
+    let mut header = postcard::to_allocvec(&(SAVE_STATE_MAGIC, SAVE_STATE_VERSION)).unwrap();
+    assert_eq!(&bytes[..header.len()], &header[..]);
+    header.clear();
+    let back = load(&bytes).expect("loads");
+    assert_eq!(save(&back), bytes);
+    assert_eq!(body_json(&back), body_json(&g));
+    assert_eq!(back.gpustat(), g.gpustat());
+    assert_eq!(back.pending_input(), g.pending_input());
+    assert_eq!(back.cycles_until_next_event(), g.cycles_until_next_event());
+    // JSON: header fields by name.
+    let json = serde_json::to_string(&g.save_state()).unwrap();
+    assert!(json.starts_with(&format!(
+        "{{\"magic\":{SAVE_STATE_MAGIC},\"version\":{SAVE_STATE_VERSION},\"gpu\":"
+    )));
+    let back: SaveState = serde_json::from_str(&json).expect("loads");
+    assert_eq!(body_json(&back.into_gpu()), body_json(&g));
+}
+
+#[test]
+fn every_truncation_is_an_error() {
+    let g = busy_gpu();
+    let bytes = save(&g);
+    // The registers lead the state and VRAM comes last: every cut through the registers,
+    // a sample through VRAM, every cut in its last 64 bytes.
+    let vram_start = bytes.len() - postcard::to_allocvec(g.vram()).unwrap().len();
+    let cuts = (0..vram_start + 16)
+        .chain((vram_start..bytes.len()).step_by(9973))
+        .chain(bytes.len() - 64..bytes.len());
+    for cut in cuts {
+        assert!(
+            load(&bytes[..cut]).is_err(),
+            "cut at {cut} of {}",
+            bytes.len()
+        );
+    }
+    let json = serde_json::to_string(&g.save_state()).unwrap();
+    let vram_at = json.find("\"vram\"").unwrap();
+    for cut in (0..vram_at + 40).chain((vram_at..json.len()).step_by(49_999)) {
+        assert!(serde_json::from_str::<SaveState>(&json[..cut]).is_err());
+    }
+}
+
+#[test]
+fn other_version_or_magic_is_refused_before_the_body() {
+    let g = Gpu::new();
+    let mut json: serde_json::Value = serde_json::to_value(g.save_state()).unwrap();
+    json["version"] = (SAVE_STATE_VERSION + 1).into();
+    let err = serde_json::from_value::<SaveState>(json.clone())
+        .unwrap_err()
+        .to_string();
+    let expected = format!(
+        "GPU save state version {}, this build reads version {SAVE_STATE_VERSION}",
+        SAVE_STATE_VERSION + 1
+    );
+    assert!(err.contains(&expected), "{err}");
+    // Positional: a newer version followed by a body this build cannot parse still names
+    // the version.
+    let bytes =
+        postcard::to_allocvec(&(SAVE_STATE_MAGIC, SAVE_STATE_VERSION + 1, [7u8; 9])).unwrap();
+    assert!(matches!(load(&bytes), Err(postcard::Error::SerdeDeCustom)));
+    let bytes = postcard::to_allocvec(&(0x1234_5678u32, SAVE_STATE_VERSION)).unwrap();
+    assert!(matches!(load(&bytes), Err(postcard::Error::SerdeDeCustom)));
+    json["version"] = SAVE_STATE_VERSION.into();
+    json["magic"] = 0x1234_5678.into();
+    let err = serde_json::from_value::<SaveState>(json.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("not a GPU save state (magic 0x12345678)"),
+        "{err}"
+    );
+    // A body without its header is refused.
+    let text = format!("{{\"gpu\":{}}}", serde_json::to_string(&g).unwrap());
+    let err = serde_json::from_str::<SaveState>(&text).unwrap_err();
+    assert!(err.to_string().contains("missing field `magic`"), "{err}");
+}
+
+/// Each field set to a value the hardware cannot reach is refused with its reason.
+#[test]
+fn unreachable_fields_are_refused() {
+    let g = busy_gpu();
+    let base = body_json(&g);
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(&str, Edit); 16] = [
+        ("GP0 packet buffer longer", |v| v["gp0"]["len"] = 13.into()),
+        ("GP0 packet words during a transfer", |v| {
+            v["gp0"]["len"] = 1.into()
+        }),
+        ("transfer position", |v| {
+            v["gp0"]["mode"]["Write"]["next"] = 8.into()
+        }),
+        ("transfer position", |v| {
+            v["gp0"]["mode"]["Write"]["next"] = 1.into()
+        }),
+        ("transfer rectangle", |v| {
+            v["gp0"]["mode"]["Write"]["rect"]["w"] = 0.into()
+        }),
+        ("transfer rectangle", |v| {
+            v["read"]["rect"]["h"] = 513.into()
+        }),
+        ("VRAM-to-CPU transfer position", |v| {
+            v["read"]["next"] = 8.into()
+        }),
+        ("FIFO word count", |v| {
+            v["drawing"]["fifo_words"] = 17.into()
+        }),
+        ("drawing queue index", |v| v["drawing"]["head"] = 16.into()),
+        ("interlace field", |v| v["timing"]["field"] = 2.into()),
+        ("video clock remainder", |v| {
+            v["timing"]["remainder"] = 7.into()
+        }),
+        ("beam position", |v| {
+            v["timing"]["position"] = 2_000_000.into()
+        }),
+        ("texture window", |v| {
+            v["draw"]["window"]["mask_x"] = 32.into()
+        }),
+        ("drawing offset", |v| v["draw"]["offset_x"] = 1024.into()),
+        ("CLUT cache position", |v| {
+            v["clut"]["key"] = serde_json::json!([1009, 0])
+        }),
+        ("display register", |v| {
+            v["display"]["dma_direction"] = 4.into()
+        }),
+    ];
+    assert!(serde_json::from_value::<Gpu>(base.clone()).is_ok());
+    for (reason, edit) in cases {
+        let mut v = base.clone();
+        edit(&mut v);
+        let err = serde_json::from_value::<Gpu>(v).unwrap_err().to_string();
+        assert!(err.contains(reason), "expected {reason:?}, got {err}");
+    }
+    // A complete packet waiting unexecuted.
+    let mut idle = body_json(&Gpu::new());
+    idle["gp0"]["buf"][0] = 0xE100_0000u32.into();
+    idle["gp0"]["len"] = 1.into();
+    let err = serde_json::from_value::<Gpu>(idle).unwrap_err().to_string();
+    assert!(err.contains("complete GP0 packet"), "{err}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Garbage bytes, and a valid state with one byte of its registers replaced, load as an
+    /// error or as a GPU that keeps working; never a panic.
+    #[test]
+    fn garbage_never_panics(
+        junk in prop::collection::vec(any::<u8>(), 0..64),
+        at in any::<prop::sample::Index>(),
+        byte in any::<u8>(),
+    ) {
+        prop_assert!(load(&junk).is_err());
+        let g = busy_gpu();
+        let mut bytes = save(&g);
+        let vram_start = bytes.len() - postcard::to_allocvec(g.vram()).unwrap().len();
+        let i = at.index(vram_start);
+        bytes[i] = byte;
+        if let Ok(mut back) = load(&bytes) {
+            back.gp0_words(&[0x2800_FFFF, xy(0, 0), xy(64, 0), xy(0, 64), xy(64, 64)]);
+            for _ in 0..4 {
+                let wait = back.cycles_until_next_event().min(200_000);
+                back.run(wait.max(1));
+            }
+            back.gpuread();
+            let _ = back.gpustat();
+            prop_assert!(load(&save(&back)).is_ok());
+        }
+    }
+}
