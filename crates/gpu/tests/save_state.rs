@@ -315,3 +315,207 @@ proptest! {
         }
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// Save at a random point of a random command stream, restore, continue both.
+
+/// One thing the CPU does to the GPU.
+#[derive(Clone, Copy, Debug)]
+enum Action {
+    Gp0(u32),
+    Gp1(u32),
+    Run(u32),
+    Read,
+}
+
+/// A position word in a 200x200 area, slightly past its edges.
+fn pos(r: u32) -> u32 {
+    let x = (r & 0xFF) % 220;
+    let y = (r >> 8 & 0xFF) % 220;
+    (y.wrapping_sub(10) & 0x7FF) << 16 | (x.wrapping_sub(10) & 0x7FF)
+}
+
+/// A texcoord word: UV anywhere, CLUT or texpage attribute in the high half.
+fn uv(r: u32, attr: u32) -> u32 {
+    attr << 16 | (r & 0xFFFF)
+}
+
+/// Append the actions of one structured item of class `kind`, from the random words `r`.
+fn item(kind: u8, r: [u32; 8], out: &mut Vec<Action>) {
+    let mut gp0 = |w: u32| out.push(Action::Gp0(w));
+    match kind {
+        // Polygons: flat/Gouraud, 3/4 vertices, textured or not, semi, raw.
+        0..=2 => {
+            let flags = r[0] >> 24 & 0x1F;
+            let gouraud = flags & 0x10 != 0;
+            let quad = flags & 0x08 != 0;
+            let textured = flags & 0x04 != 0;
+            gp0(0x2000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            for v in 0..if quad { 4 } else { 3 } {
+                if gouraud && v > 0 {
+                    gp0(r[v].rotate_left(7) & 0xFF_FFFF);
+                }
+                gp0(pos(r[v + 1]));
+                if textured {
+                    let attr = match v {
+                        0 => r[5] >> 16 & 0x7FFF,
+                        1 => r[6] >> 16 & 0x9FF,
+                        _ => 0,
+                    };
+                    gp0(uv(r[v + 4], attr));
+                }
+            }
+        }
+        // Lines and polylines, terminated.
+        3 => {
+            let flags = r[0] >> 24 & 0x1B;
+            let gouraud = flags & 0x10 != 0;
+            let poly = flags & 0x08 != 0;
+            gp0(0x4000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            gp0(pos(r[1]));
+            let count = if poly { 1 + r[7] % 4 } else { 1 };
+            for v in 0..count as usize {
+                if gouraud {
+                    gp0(r[v + 2] & 0xFF_FFFF);
+                }
+                gp0(pos(r[v + 3]));
+            }
+            if poly {
+                gp0(0x5555_5555);
+            }
+        }
+        // Rectangles of every size class.
+        4 => {
+            let flags = r[0] >> 24 & 0x1F;
+            gp0(0x6000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            gp0(pos(r[1]));
+            if flags & 0x04 != 0 {
+                gp0(uv(r[2], r[3] >> 16 & 0x7FFF));
+            }
+            if flags & 0x18 == 0 {
+                gp0((r[4] & 0x3F) << 16 | (r[4] >> 8 & 0x3F));
+            }
+        }
+        // Fill.
+        5 => {
+            gp0(0x0200_0000 | (r[0] & 0xFF_FFFF));
+            gp0(r[1] & 0x01FF_03FF);
+            gp0((r[2] & 0x3F) << 16 | (r[2] >> 8 & 0x3F));
+        }
+        // VRAM-to-VRAM copy.
+        6 => {
+            gp0(0x8000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(r[2] & 0x01FF_03FF);
+            gp0((r[3] & 0x1F) << 16 | (r[3] >> 8 & 0x1F));
+        }
+        // CPU-to-VRAM with its data.
+        7 => {
+            let (w, h) = (1 + r[3] % 6, 1 + (r[3] >> 8) % 4);
+            gp0(0xA000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(h << 16 | w);
+            for i in 0..(w * h).div_ceil(2) {
+                gp0(r[(i % 4) as usize + 4].rotate_left(i));
+            }
+        }
+        // VRAM-to-CPU, then GPUREAD for all of it and one more.
+        8 => {
+            let (w, h) = (1 + r[3] % 6, 1 + (r[3] >> 8) % 4);
+            gp0(0xC000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(h << 16 | w);
+            for _ in 0..(w * h).div_ceil(2) + 1 {
+                out.push(Action::Read);
+            }
+        }
+        // Environment E1-E6.
+        9 => gp0((0xE1 + r[0] % 6) << 24 | (r[1] & 0xFF_FFFF)),
+        // GP1: reset, FIFO reset, IRQ ack, display enable, DMA direction, display area and
+        // ranges, mode, texture-disable permission, info.
+        10 => {
+            let cmd = [
+                0x00, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x09, 0x10, 0x10, 0x10,
+            ][r[0] as usize % 13];
+            let arg = match cmd {
+                0x06 => 0x200 + (r[1] & 0x3FF) | (0xA00 + (r[1] >> 12 & 0x3FF)) << 12,
+                0x07 => (r[1] & 0x3F) | (0xF0 + (r[1] >> 10 & 0x3F)) << 10,
+                _ => r[1] & 0xFF_FFFF,
+            };
+            out.push(Action::Gp1(cmd << 24 | arg));
+            if cmd == 0x10 {
+                out.push(Action::Read);
+            }
+        }
+        // GP0(1Fh) IRQ request, GP0(01h) CLUT invalidation.
+        11 => gp0(if r[0] & 1 == 0 {
+            0x1F00_0000
+        } else {
+            0x0100_0000
+        }),
+        // Time: up to about a third of a frame.
+        12 | 13 => out.push(Action::Run(r[0] % 200_000)),
+        // Noise: any word to GP0, or a GPUREAD with no transfer (the latch).
+        _ if r[1] & 1 == 0 => out.push(Action::Read),
+        _ => gp0(r[0]),
+    }
+}
+
+/// Perform `a`; returns what the CPU observes (GPUREAD value or the events), with GPUSTAT.
+fn perform(g: &mut Gpu, a: Action) -> (Option<u32>, Option<gpu::Events>, u32) {
+    let (read, events) = match a {
+        Action::Gp0(w) => {
+            g.gp0(w);
+            (None, None)
+        }
+        Action::Gp1(w) => {
+            g.gp1(w);
+            (None, None)
+        }
+        Action::Run(c) => (None, Some(g.run(c))),
+        Action::Read => (Some(g.gpuread()), None),
+    };
+    (read, events, g.gpustat())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// VRAM, GPUSTAT, every GPUREAD value and every `Events` of a GPU restored from a save
+    /// taken at any action stay those of the GPU that was never saved.
+    #[test]
+    fn save_anywhere_continues_identically(
+        items in prop::collection::vec((0u8..16, prop::array::uniform8(any::<u32>())), 1..60),
+        at in any::<prop::sample::Index>(),
+    ) {
+        // A drawing area over the test region, so primitives draw.
+        let mut actions = vec![
+            Action::Gp0(0xE300_0000),
+            Action::Gp0(0xE403_FCFF),
+            Action::Gp1(0x0300_0000),
+        ];
+        for (kind, r) in items {
+            item(kind, r, &mut actions);
+        }
+        let split = at.index(actions.len() + 1);
+        let mut reference = Gpu::new();
+        for &a in &actions[..split] {
+            perform(&mut reference, a);
+        }
+        let mut restored = load(&save(&reference)).expect("a reachable state loads");
+        prop_assert_eq!(restored.gpustat(), reference.gpustat());
+        prop_assert_eq!(restored.cycles_until_next_event(), reference.cycles_until_next_event());
+        for (i, &a) in actions[split..].iter().enumerate() {
+            let expected = perform(&mut reference, a);
+            prop_assert_eq!(perform(&mut restored, a), expected, "action {} {:?}", split + i, a);
+        }
+        // Drain time and events until both are idle.
+        for _ in 0..8 {
+            let wait = reference.cycles_until_next_event().min(100_000);
+            prop_assert_eq!(restored.cycles_until_next_event().min(100_000), wait);
+            prop_assert_eq!(restored.run(wait.max(1)), reference.run(wait.max(1)));
+        }
+        prop_assert!(restored.vram().as_slice() == reference.vram().as_slice(), "VRAM differs");
+        prop_assert_eq!(save(&restored), save(&reference));
+    }
+}
