@@ -124,7 +124,7 @@ impl DrawState {
         let w = &self.window;
         let a = &self.area;
         let offset = -1024..=1023;
-        if m.page_x % 64 != 0 || m.page_x > 960 || !matches!(m.page_y, 0 | 256) {
+        if !m.page_x.is_multiple_of(64) || m.page_x > 960 || !matches!(m.page_y, 0 | 256) {
             Err("texture page outside the texpage field")
         } else if m.depth_reserved && m.depth != TextureDepth::Direct15 {
             Err("reserved texture depth not read as 15-bit")

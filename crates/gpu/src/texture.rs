@@ -40,7 +40,7 @@ impl ClutCache {
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), &'static str> {
         match self.key {
-            Some((x, y)) if x % 16 != 0 || x > 1008 || y > 511 => {
+            Some((x, y)) if !x.is_multiple_of(16) || x > 1008 || y > 511 => {
                 Err("CLUT cache position outside VRAM or not a multiple of 16")
             }
             None if self.loaded_8bit => Err("CLUT cache with 8-bit entries but no position"),

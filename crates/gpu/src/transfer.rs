@@ -135,7 +135,7 @@ impl WriteTransfer {
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), &'static str> {
         self.rect.check()?;
-        if self.next < self.rect.pixels() && self.next % 2 == 0 {
+        if self.next < self.rect.pixels() && self.next.is_multiple_of(2) {
             Ok(())
         } else {
             Err("CPU-to-VRAM transfer position past its rectangle or odd")
@@ -187,7 +187,7 @@ impl ReadTransfer {
             return Ok(());
         }
         self.rect.check()?;
-        if self.next < self.rect.pixels() && self.next % 2 == 0 {
+        if self.next < self.rect.pixels() && self.next.is_multiple_of(2) {
             Ok(())
         } else {
             Err("VRAM-to-CPU transfer position past its rectangle or odd")
