@@ -10,7 +10,7 @@
 
 extern crate alloc;
 
-pub mod color;
+mod color;
 pub mod command_stream;
 pub mod decode;
 mod display;
@@ -18,15 +18,17 @@ mod dma;
 mod drawing;
 mod frame;
 mod gp0;
-pub mod ordering_table;
-pub mod primitive;
-pub mod rasterizer;
+mod ordering_table;
+#[cfg(feature = "precise")]
+pub mod precise;
+mod primitive;
+mod rasterizer;
 #[cfg(feature = "serde")]
 mod save;
 #[cfg(feature = "serde")]
 mod serde_array;
-pub mod state;
-pub mod texture;
+mod state;
+mod texture;
 mod timing;
 mod transfer;
 
@@ -40,9 +42,14 @@ pub use dma::{
 };
 pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 pub use gp0::PendingInput;
+pub use ordering_table::{
+    END_MARKER, MAX_DEPTH, MAX_PACKET_WORDS, MAX_WORDS, OrderingTable, OtError, WalkStats, walk_ram,
+};
 #[cfg(feature = "serde")]
 pub use save::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState, StateError};
-use state::DrawState;
+pub use state::{
+    BlendMode, DrawMode, DrawState, DrawingArea, MaskSettings, TextureDepth, TextureWindow,
+};
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 
@@ -131,8 +138,8 @@ impl core::fmt::Debug for Vram {
 #[derive(Clone, Debug)]
 ///
 /// With the `serde` feature the whole state serializes; deserializing checks every field
-/// against what the hardware can reach ([`StateError`]). [`Gpu::save_state`] adds a format
-/// header and version.
+/// against what the hardware can reach (`StateError`); `Gpu::save_state` adds a format
+/// header and version (docs/emulator.md, "Save states").
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
