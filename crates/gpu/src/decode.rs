@@ -4,7 +4,7 @@
 //!
 //! Decoding uses the packet-length rule, field decoders and primitive builders that GP0
 //! itself runs (docs/hardware/gpu.md §2), and the drop tests are the rasterizer's own
-//! ([`crate::rasterizer::classify_triangle`] and friends), so a decoded command describes
+//! (the rasterizer's `classify_triangle` and friends), so a decoded command describes
 //! exactly what [`Gpu::gp0`] does with it. Decoding never changes the GPU.
 //!
 //! ```

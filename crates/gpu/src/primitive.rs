@@ -50,7 +50,7 @@ pub struct Triangle {
     pub texture: Option<Texture>,
     /// Semi-transparency mode, when the command is semi-transparent.
     pub blend: Option<BlendMode>,
-    /// Dithering applies (E1 bit 9 and the primitive kind allows it: [`dither_applies`]).
+    /// Dithering applies (E1 bit 9 and the primitive kind allows it: Gouraud or modulated-texture primitives, docs/hardware/gpu.md §6).
     pub dither: bool,
 }
 
