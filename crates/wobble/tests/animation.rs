@@ -113,6 +113,9 @@ fn floor_texture_swims_in_hardware_only() {
     );
 }
 
+/// A vertex's GTE screen position and its exact one.
+type Positions = ([f64; 2], [f64; 2]);
+
 /// Mean frame-to-frame vertex displacement of the GTE's projection minus the exact f64
 /// motion, in pixels, over the cube's vertices on screen, frames 0..30.
 fn cube_jitter(subpixel: bool) -> f64 {
@@ -123,7 +126,7 @@ fn cube_jitter(subpixel: bool) -> f64 {
         .flat_map(|f| f.v.map(|v| v.position))
         .collect();
     let (w, h) = (f64::from(base.screen.width), f64::from(base.screen.height));
-    let mut last: Option<Vec<Option<([f64; 2], [f64; 2])>>> = None;
+    let mut last: Option<Vec<Option<Positions>>> = None;
     let (mut sum, mut count) = (0.0, 0usize);
     for frame in 0..30 {
         let s = animation.scene_at(&base, frame);
