@@ -9,6 +9,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand, PageDepth};
 
+mod compare;
+mod gif;
 mod inspect;
 mod output;
 mod render;

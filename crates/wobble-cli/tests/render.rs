@@ -95,7 +95,7 @@ fn frames_without_gif_flag_write_a_gif_beside_the_png() {
     let summary = String::from_utf8_lossy(&o.stdout);
     assert!(
         summary.contains(&format!("{} (last frame)", out.display()))
-            && summary.contains(&format!("{} (2 frames)", gif.display())),
+            && summary.contains(&format!("{} (2 frames, ", gif.display())),
         "{summary}"
     );
 }
@@ -129,7 +129,7 @@ fn progress_lines_and_large_output_refusal() {
         e.contains("rendered 2/20 frames") && e.contains("rendered 20/20 frames"),
         "{e}"
     );
-    // 100000 frames at 320x240: 320 * 240 / 16 = 4800 bytes a frame, 480 MB in all.
+    // 100000 frames at 320x240: 320 * 240 / 6 = 12800 bytes a frame, 1280 MB in all.
     std::fs::remove_file(&gif).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args(["render", "--frames", "100000", "-o", out.to_str().unwrap()])
@@ -137,8 +137,63 @@ fn progress_lines_and_large_output_refusal() {
         .unwrap();
     assert!(!o.status.success());
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("480 MB") && e.contains("--large-output"), "{e}");
+    assert!(e.contains("1280 MB") && e.contains("--large-output"), "{e}");
     assert!(!gif.exists());
+}
+
+/// `--compare`: a GIF twice the screen's width, at the default scene's 30 frames a second
+/// (3/100 s a frame), each half labelled: the label boxes are black with white ink, and the
+/// first glyphs match the public-domain 8x8 font's table ('P' rows 0x3F, 0x66, 0x66; 'r' row
+/// 2 0x3B, bit 0 leftmost), drawn 2 pixels in from the box corner.
+#[test]
+fn compare_side_by_side_with_labels() {
+    use image::AnimationDecoder;
+    let out = write("compare.gif", "");
+    let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+        .args([
+            "render",
+            "--compare",
+            "--frames",
+            "2",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        summary.contains("frames/s rendered") && summary.contains(" KB, 30 fps"),
+        "{summary}"
+    );
+    let file = std::io::BufReader::new(std::fs::File::open(&out).unwrap());
+    let frames = image::codecs::gif::GifDecoder::new(file)
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert_eq!(frames.len(), 2);
+    assert_eq!(frames[0].delay().numer_denom_ms(), (30, 1));
+    let img = frames[0].buffer();
+    assert_eq!(img.dimensions(), (640, 240));
+    let ink = |x: u32, y: u32| img.get_pixel(x, y).0[..3] == [255, 255, 255];
+    let dark = |x: u32, y: u32| img.get_pixel(x, y).0[..3] == [0, 0, 0];
+    let row = |x0: u32, y: u32, bits: u8| {
+        (0..8).all(|i| {
+            if bits >> i & 1 == 1 {
+                ink(x0 + i, y)
+            } else {
+                dark(x0 + i, y)
+            }
+        })
+    };
+    // Left: "PS1: ..." starts with 'P'.
+    assert!(row(2, 2, 0x3F) && row(2, 3, 0x66) && row(2, 4, 0x66));
+    // Right: "reference: ..." starts with 'r' at x = 320.
+    assert!(row(322, 4, 0x3B));
+    // The top margin of both boxes is black across the first glyphs.
+    assert!((0..20).all(|x| dark(x, 0) && dark(320 + x, 0)));
+    let _ = std::fs::remove_file(&out);
 }
 
 /// Every size the README advertises renders the default scene (8-bit checker CLUT) and the

@@ -20,7 +20,7 @@ pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
-use crate::scene::{InvalidScene, Scene};
+use crate::scene::{Camera, InvalidScene, Scene};
 use gpu::{DisplayArea, Gpu};
 use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
@@ -328,6 +328,26 @@ impl Renderer {
     /// The scene being rendered.
     pub fn scene(&self) -> &Scene {
         &self.scene
+    }
+
+    /// Move the camera (an animation's path); checked as the scene's camera is.
+    pub fn set_camera(&mut self, camera: Camera) -> Result<(), InvalidScene> {
+        self.scene.validate_camera(&camera)?;
+        self.scene.camera = camera;
+        Ok(())
+    }
+
+    /// Move object `object` (index into the scene's objects) to `position`.
+    pub fn set_object_position(
+        &mut self,
+        object: usize,
+        position: [f64; 3],
+    ) -> Result<(), InvalidScene> {
+        self.scene.validate_position(object, position)?;
+        if let Some(o) = self.scene.objects.get_mut(object) {
+            o.position = position;
+        }
+        Ok(())
     }
 
     /// The GPU (VRAM holds both buffers and the textures).

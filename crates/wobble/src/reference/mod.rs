@@ -2,7 +2,8 @@
 //! measuring what the PS1's shortcuts cost. Exact trigonometry and division, sub-pixel
 //! vertex positions, perspective-correct texture coordinates and colours, polygons clipped
 //! (not dropped) at a near plane, a z-buffer instead of painter's order, no dithering,
-//! nearest texel. Not hardware behaviour: the `gpu` crate stays hardware-faithful.
+//! nearest texel; fog, where the scene has it, computed per pixel from the exact depth with
+//! the GTE's depth-cue curve (linear in 1/Z, docs/hardware/gte.md §5 step 7). Not hardware behaviour: the `gpu` crate stays hardware-faithful.
 //!
 //! Sampling convention, shared with the GPU so face-on views agree exactly: pixel (x, y)
 //! samples the scene at its integer coordinate, and the texel chosen is the nearest,
@@ -95,6 +96,30 @@ fn clip_near(poly: &[CamVertex], near: f64) -> Vec<CamVertex> {
     out
 }
 
+/// Fog as the reference applies it: 1/near, 1/far and the far colour.
+#[derive(Clone, Copy, Debug)]
+struct FogCurve {
+    inv_near: f64,
+    inv_far: f64,
+    color: [f64; 3],
+}
+
+impl FogCurve {
+    /// The fraction of fog colour at 1/z = `inv_z`: 0 at `near`, 1 at `far` and beyond,
+    /// linear in 1/z between (the shape of the GTE's IR0, docs/hardware/gte.md §5 step 7).
+    fn apply(&self, inv_z: f64, c: [f64; 3]) -> [f64; 3] {
+        let f = ((self.inv_near - inv_z) / (self.inv_near - self.inv_far)).clamp(0.0, 1.0);
+        std::array::from_fn(|k| c[k] + (self.color[k] - c[k]) * f)
+    }
+}
+
+/// What a triangle is drawn with besides its vertices.
+#[derive(Clone, Copy)]
+struct Surface<'a> {
+    texture: Option<&'a crate::scene::texture::Texture>,
+    fog: Option<FogCurve>,
+}
+
 /// Screen-space vertex: position, 1/z, attributes divided by z.
 #[derive(Clone, Copy)]
 struct ScreenVertex {
@@ -116,6 +141,14 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
     let mut texture_size = vec![None; width * height];
     let mut depth = vec![0.0f64; width * height];
     let view = rotation(scene.camera.rotation);
+    let fog = scene
+        .fog
+        .filter(|f| f.near > 0.0 && f.far > f.near)
+        .map(|f| FogCurve {
+            inv_near: 1.0 / f.near,
+            inv_far: 1.0 / f.far,
+            color: f.color.map(f64::from),
+        });
     for (index, object) in scene.objects.iter().enumerate() {
         let rot = rotation(object_rotation(object, frame));
         let m: [[f64; 3]; 3] = std::array::from_fn(|r| {
@@ -200,7 +233,7 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
                 raster(
                     [&sv[0], &sv[k], &sv[k + 1]],
                     (width, height),
-                    texture,
+                    Surface { texture, fog },
                     &mut rgb,
                     &mut texel,
                     &mut texture_size,
@@ -228,7 +261,7 @@ fn expand(c: u16) -> f64 {
 fn raster(
     t: [&ScreenVertex; 3],
     (width, height): (usize, usize),
-    texture: Option<&crate::scene::texture::Texture>,
+    Surface { texture, fog }: Surface<'_>,
     rgb: &mut [[u8; 3]],
     texel: &mut [Option<(i32, i32)>],
     texture_size: &mut [Option<(i32, i32)>],
@@ -299,6 +332,10 @@ fn raster(
                         Some((u, v)),
                     )
                 }
+            };
+            let color = match fog {
+                Some(f) => f.apply(inv_z, color),
+                None => color,
             };
             depth[idx] = inv_z;
             rgb[idx] = color.map(|v| v.round().clamp(0.0, 255.0) as u8);

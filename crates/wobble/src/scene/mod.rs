@@ -1,6 +1,7 @@
 //! Scenes: meshes, textures, objects, camera, light and screen, from a TOML file
 //! (docs/formats.md, "Scene files") or built in (the default scene), and their validation.
 
+pub mod animation;
 pub mod default;
 mod file;
 pub mod mesh;
@@ -575,6 +576,38 @@ impl Scene {
             })?;
         }
         Ok(())
+    }
+
+    /// Check a camera as [`Scene::validate`] does (H, finite numbers, the fog range for its
+    /// H).
+    pub fn validate_camera(&self, camera: &Camera) -> Result<(), InvalidScene> {
+        use NumberRule::Finite;
+        if camera.h == 0 {
+            return Err(InvalidScene::CameraH);
+        }
+        check_numbers("camera.position", &camera.position, Finite)?;
+        check_numbers("camera.rotation", &camera.rotation, Finite)?;
+        if let Some(fog) = &self.fog
+            && fog.coefficients(camera.h).is_none()
+        {
+            return Err(InvalidScene::Fog {
+                near: fog.near,
+                far: fog.far,
+            });
+        }
+        Ok(())
+    }
+
+    /// Check an object position as [`Scene::validate`] does; `object` numbered from 0.
+    pub fn validate_position(&self, object: usize, position: [f64; 3]) -> Result<(), InvalidScene> {
+        if object >= self.objects.len() {
+            return Err(InvalidScene::ObjectIndex { object: object + 1 });
+        }
+        check_numbers(
+            &format!("object {}: position", object + 1),
+            &position,
+            NumberRule::Finite,
+        )
     }
 
     /// The built-in scene (`scene/default.rs`).

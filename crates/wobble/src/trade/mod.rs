@@ -171,7 +171,7 @@ pub struct TradeSettings {
 
 /// A scene whose textures encode their own texel coordinates (15-bit: R = u & 31,
 /// G = v & 31, B = u >> 5 | (v >> 5) << 2, for textures up to 128 texels a side; larger
-/// textures are encoded at half resolution), lit by nothing, undithered, opaque: drawing it
+/// textures are encoded at half resolution), lit by nothing, unfogged, undithered, opaque: drawing it
 /// through the pipeline shows which texel the hardware sampled at every pixel.
 pub fn coordinate_scene(scene: &Scene) -> Scene {
     let mut s = scene.clone();
@@ -199,6 +199,7 @@ pub fn coordinate_scene(scene: &Scene) -> Scene {
         }
     }
     s.light = None;
+    s.fog = None;
     s.screen.dither = false;
     s.screen.background = [0, 0, 0];
     for o in &mut s.objects {
