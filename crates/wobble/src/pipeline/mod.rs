@@ -84,11 +84,58 @@ pub struct PipelineOptions {
 
 impl PipelineOptions {
     /// Whether polygons go through the non-hardware precise rasterizer (never, when built
-    /// without the `accuracy-knobs` feature).
+    /// without the `accuracy-knobs` feature: such options are refused by [`Self::check`]).
     pub fn precise(&self) -> bool {
         cfg!(feature = "accuracy-knobs") && (self.subpixel || self.perspective_uv)
     }
+
+    /// The first knob these options turn that this build does not include: every
+    /// non-hardware knob (a divide other than UNR, sub-pixel vertices, perspective-correct
+    /// texture coordinates) needs the `accuracy-knobs` feature.
+    pub fn check(&self) -> Result<(), UnsupportedKnob> {
+        if cfg!(feature = "accuracy-knobs") {
+            return Ok(());
+        }
+        if self.divide_mode != DivideMode::Unr {
+            Err(UnsupportedKnob::Divide(self.divide_mode))
+        } else if self.subpixel {
+            Err(UnsupportedKnob::Subpixel)
+        } else if self.perspective_uv {
+            Err(UnsupportedKnob::PerspectiveUv)
+        } else {
+            Ok(())
+        }
+    }
 }
+
+/// A non-hardware knob asked of a build without the `accuracy-knobs` feature.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnsupportedKnob {
+    /// A GTE divide other than the hardware's UNR divide.
+    Divide(DivideMode),
+    /// Sub-pixel vertex positions.
+    Subpixel,
+    /// Perspective-correct texture coordinates.
+    PerspectiveUv,
+}
+
+impl fmt::Display for UnsupportedKnob {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let knob = match self {
+            UnsupportedKnob::Divide(DivideMode::Exact) => "the exact GTE divide",
+            UnsupportedKnob::Divide(DivideMode::F32) => "the f32 GTE divide",
+            UnsupportedKnob::Divide(DivideMode::Unr) => "the UNR GTE divide",
+            UnsupportedKnob::Subpixel => "sub-pixel vertices",
+            UnsupportedKnob::PerspectiveUv => "perspective-correct texture coordinates",
+        };
+        write!(
+            f,
+            "{knob} is not built: it needs the `accuracy-knobs` feature of the wobble crate"
+        )
+    }
+}
+
+impl std::error::Error for UnsupportedKnob {}
 
 impl Default for PipelineOptions {
     fn default() -> Self {
@@ -111,7 +158,7 @@ pub enum RenderError {
     /// The scene is inconsistent.
     Scene(InvalidScene),
     /// An accuracy knob this build does not include (built without `accuracy-knobs`).
-    Unsupported(gte::UnsupportedDivideMode),
+    Unsupported(UnsupportedKnob),
     /// The ordering table cannot be built.
     OrderingTable(OtError),
 }
@@ -204,6 +251,7 @@ impl Renderer {
     /// Prepare a scene: tessellate meshes, place and upload textures (GP0 A0h), set up the
     /// GPU's display.
     pub fn new(scene: Scene, options: PipelineOptions) -> Result<Renderer, RenderError> {
+        options.check().map_err(RenderError::Unsupported)?;
         scene.validate().map_err(RenderError::Scene)?;
         let (width, height) = (scene.screen.width, scene.screen.height);
         let mut gpu = Gpu::new();
@@ -287,7 +335,7 @@ impl Renderer {
         let mut geometry = Geometry::new();
         geometry
             .set_divide_mode(options.divide_mode)
-            .map_err(RenderError::Unsupported)?;
+            .map_err(|e| RenderError::Unsupported(UnsupportedKnob::Divide(e.0)))?;
         Ok(Renderer {
             ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
                 .map_err(RenderError::OrderingTable)?,
