@@ -1,7 +1,7 @@
 //! The trade report's markdown (`trade.md`) and the files it links to.
 
 use super::charts::{curve_image, side_by_side};
-use super::measure::{Measurement, divide_stability, measure};
+use super::measure::{Measurement, Skipped, divide_stability, measure};
 use super::{Knob, Row, TradeError, TradeProgress, TradeSettings, configs};
 use crate::pipeline::{PipelineOptions, Renderer};
 use crate::reference;
@@ -99,31 +99,7 @@ pub fn write_report(
         settings.frames.max(2),
         settings.repeats.max(1)
     );
-    let _ = writeln!(
-        md,
-        "| configuration | ms/frame | vs hardware | polygons drawn | pixels differing from hardware | mean texel error | max texel error | vertex jitter (px) |"
-    );
-    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
-    for r in &rows {
-        let _ = writeln!(
-            md,
-            "| {} | {:.3} | {:.2}x | {:.0} | {} | {:.3} | {:.2} | {:.3} |",
-            r.name,
-            r.frame_ms,
-            r.ratio,
-            r.drawn,
-            r.differing_pixels,
-            r.texel_mean,
-            r.texel_max,
-            r.jitter
-        );
-    }
-    if !skipped.is_empty() {
-        let _ = writeln!(md, "\nNot measured in this build:\n");
-        for s in &skipped {
-            let _ = writeln!(md, "- {}: {}", s.knob.label(), s.reason);
-        }
-    }
+    md.push_str(&table(&rows, &skipped));
     let _ = writeln!(md, "\n## What the columns mean\n");
     let _ = writeln!(
         md,
@@ -207,6 +183,37 @@ pub fn write_report(
     let path = out.join("trade.md");
     std::fs::write(&path, md).map_err(|source| TradeError::Io { file: path, source })?;
     Ok(rows)
+}
+
+/// The figures table, then a note listing the rows this build did not measure.
+fn table(rows: &[Row], skipped: &[Skipped]) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "| configuration | ms/frame | vs hardware | polygons drawn | pixels differing from hardware | mean texel error | max texel error | vertex jitter (px) |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let _ = writeln!(
+            md,
+            "| {} | {:.3} | {:.2}x | {:.0} | {} | {:.3} | {:.2} | {:.3} |",
+            r.name,
+            r.frame_ms,
+            r.ratio,
+            r.drawn,
+            r.differing_pixels,
+            r.texel_mean,
+            r.texel_max,
+            r.jitter
+        );
+    }
+    if !skipped.is_empty() {
+        let _ = writeln!(md, "\nNot measured in this build:\n");
+        for s in skipped {
+            let _ = writeln!(md, "- {}: {}", s.knob.label(), s.reason);
+        }
+    }
+    md
 }
 
 /// A short conclusion drawn from the figures.
@@ -366,5 +373,31 @@ mod tests {
         let text = conclusion(&rows[0], &rows, &tess);
         assert!(!text.contains("Dithering changes"));
         assert_eq!(text.lines().filter(|l| l.starts_with("- ")).count(), 4);
+    }
+
+    #[test]
+    fn skipped_rows_are_left_out_of_the_table_with_a_note() {
+        let rows: Vec<Row> = synthetic_rows()
+            .into_iter()
+            .filter(|r| r.knob != Knob::Subpixel)
+            .collect();
+        let skipped = [Skipped {
+            knob: Knob::Subpixel,
+            reason: "needs the `accuracy-knobs` feature".to_string(),
+        }];
+        let text = table(&rows, &skipped);
+        let table_lines = text.lines().filter(|l| l.starts_with("| ")).count();
+        // The header plus one line per measured row.
+        assert_eq!(table_lines, 1 + rows.len(), "{text}");
+        assert!(!text.contains("| sub-pixel vertices"), "{text}");
+        assert!(
+            text.contains(
+                "Not measured in this build:\n\n- sub-pixel vertices (non-hardware): needs the \
+                 `accuracy-knobs` feature"
+            ),
+            "{text}"
+        );
+        assert!(!text.contains("NaN"), "{text}");
+        assert!(!table(&rows, &[]).contains("Not measured"));
     }
 }
