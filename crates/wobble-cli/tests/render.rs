@@ -140,3 +140,34 @@ fn progress_lines_and_large_output_refusal() {
     assert!(e.contains("480 MB") && e.contains("--large-output"), "{e}");
     assert!(!gif.exists());
 }
+
+/// Every size the README advertises renders the default scene (8-bit checker CLUT) and the
+/// example scene (4-bit CLUT), including 256 lines where no VRAM line is left below the two
+/// display buffers.
+#[test]
+fn advertised_sizes_render() {
+    let example = root().join("fixtures/scenes/example.toml");
+    for size in [
+        "256x256", "320x256", "368x256", "512x256", "640x256", "640x240",
+    ] {
+        let out = write(&format!("size-{size}.png"), "");
+        for scene in [None, Some(example.to_str().unwrap())] {
+            let mut args = vec!["render", "--size", size, "-o", out.to_str().unwrap()];
+            args.extend(scene);
+            let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
+                .args(&args)
+                .output()
+                .unwrap();
+            assert!(
+                o.status.success(),
+                "{size} {scene:?}: {}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+            let (w, h) = size.split_once('x').unwrap();
+            assert_eq!(
+                image::open(&out).unwrap().to_rgb8().dimensions(),
+                (w.parse().unwrap(), h.parse().unwrap())
+            );
+        }
+    }
+}

@@ -284,3 +284,24 @@ fn polygon_cap_is_named() {
     assert_eq!((stats.drawn, stats.capped), (10, 0));
     assert_eq!(cap_message(&stats), None);
 }
+
+/// The example scene is a room, not a floating slab: its floor runs under the camera, so the
+/// bottom row of the picture is floor, not the background colour of the sky (the top-left
+/// pixel).
+#[test]
+fn example_floor_reaches_the_bottom_of_the_screen() {
+    use wobble::pipeline::{PipelineOptions, Renderer};
+    let s = Scene::load(&root().join("fixtures/scenes/example.toml")).unwrap();
+    let mut r = Renderer::new(s, PipelineOptions::default()).unwrap();
+    r.render_frame(0);
+    let img = r.image();
+    let sky = *img.get_pixel(0, 0);
+    let bottom = img.height() - 1;
+    let background = (0..img.width())
+        .filter(|&x| *img.get_pixel(x, bottom) == sky)
+        .count();
+    assert_eq!(
+        background, 0,
+        "{background} background pixels on the bottom row"
+    );
+}

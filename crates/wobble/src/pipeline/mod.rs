@@ -256,7 +256,13 @@ impl Renderer {
         let (width, height) = (scene.screen.width, scene.screen.height);
         let mut gpu = Gpu::new();
         gpu.gp1(0x0000_0000);
-        let mut alloc = VramAllocator::new(width, height);
+        let widest_clut = scene
+            .textures
+            .iter()
+            .map(|t| t.texture.clut.len())
+            .max()
+            .unwrap_or(0);
+        let mut alloc = VramAllocator::new(width, height, widest_clut);
         let mut placements = Vec::new();
         for (index, t) in scene.textures.iter().enumerate() {
             let p = alloc

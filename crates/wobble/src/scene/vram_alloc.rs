@@ -3,9 +3,10 @@
 //! Layout: display buffers at (0, 0) and (0, height) (`width` x `height` each, height at
 //! most 256); texture pages (64-halfword columns, rows at y = 0 and 256) to the right of the
 //! buffers; CLUTs in the lines below the second buffer (x multiple of 16). When the buffers
-//! leave no line below them (height 256), the last 64-halfword column of page row 1
-//! (x 960..1023, y 256..511) holds the CLUTs instead and takes no texture: room for 4-bit
-//! CLUTs (16 entries) only, four to a line.
+//! leave no line below them (height 256), the last columns of page row 1 (y 256..511) hold the
+//! CLUTs instead and take no texture: one 64-halfword column (x 960..1023, four 4-bit CLUTs to a
+//! line) when every CLUT has 16 entries, four columns (x 768..1023, one 8-bit CLUT to a line)
+//! when a scene has an 8-bit texture.
 
 use super::texture::Texture;
 use std::fmt;
@@ -41,24 +42,30 @@ pub enum VramAllocError {
     Texture {
         /// The texture's name.
         name: String,
+        /// The screen size the display buffers were laid out for.
+        screen: (u16, u16),
     },
     /// No CLUT slot for the texture's CLUT.
     Clut {
         /// The texture's name.
         name: String,
+        /// The screen size the display buffers were laid out for.
+        screen: (u16, u16),
     },
 }
 
 impl fmt::Display for VramAllocError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            VramAllocError::Texture { name } => {
-                write!(f, "VRAM full: no room for texture `{name}`")
-            }
-            VramAllocError::Clut { name } => {
-                write!(f, "VRAM full: no room for the CLUT of texture `{name}`")
-            }
-        }
+        let (what, name, (w, h)) = match self {
+            VramAllocError::Texture { name, screen } => ("texture", name, *screen),
+            VramAllocError::Clut { name, screen } => ("the CLUT of texture", name, *screen),
+        };
+        write!(
+            f,
+            "VRAM full: no room for {what} `{name}` beside two {w}x{h} display buffers \
+             (textures take the 64-halfword columns right of x = {w}); a narrower --size, or \
+             fewer or smaller textures, leaves more room"
+        )
     }
 }
 
@@ -74,19 +81,20 @@ pub struct VramAllocator {
     clut_left: u16,
     clut_right: u16,
     clut_bottom: u16,
-    /// CLUTs live in the last column of page row 1, which takes no texture.
-    clut_beside: bool,
+    /// Page columns at the right of page row 1 that hold CLUTs and take no texture (0 when
+    /// the CLUTs go below the display buffers).
+    clut_columns: u16,
+    screen: (u16, u16),
 }
 
-/// Left edge of the CLUT column used when there is no room below the buffers.
-pub const CLUT_COLUMN_X: u16 = 960;
-
 impl VramAllocator {
-    /// An allocator for display buffers of `width` x `height` (two, stacked).
-    pub fn new(width: u16, height: u16) -> Self {
+    /// An allocator for display buffers of `width` x `height` (two, stacked), for textures
+    /// whose widest CLUT has `widest_clut` entries (0 when no texture has a CLUT).
+    pub fn new(width: u16, height: u16, widest_clut: usize) -> Self {
         let first_column = width.div_ceil(64).min(16);
         let below = height.saturating_mul(2).min(512);
-        if below < 512 {
+        let screen = (width, height);
+        if below < 512 || widest_clut == 0 {
             Self {
                 first_column,
                 next: 0,
@@ -95,18 +103,25 @@ impl VramAllocator {
                 clut_left: 0,
                 clut_right: width.min(1024),
                 clut_bottom: 512,
-                clut_beside: false,
+                clut_columns: 0,
+                screen,
             }
         } else {
+            // CLUTs need a strip as wide as the widest one, in whole page columns.
+            let clut_columns = u16::try_from(widest_clut.div_ceil(64))
+                .unwrap_or(u16::MAX)
+                .min(16 - first_column);
+            let clut_left = 1024 - 64 * clut_columns;
             Self {
                 first_column,
                 next: 0,
-                clut_x: CLUT_COLUMN_X,
+                clut_x: clut_left,
                 clut_y: 256,
-                clut_left: CLUT_COLUMN_X,
+                clut_left,
                 clut_right: 1024,
                 clut_bottom: 512,
-                clut_beside: first_column < 16,
+                clut_columns,
+                screen,
             }
         }
     }
@@ -116,14 +131,17 @@ impl VramAllocator {
     pub fn place(&mut self, name: &str, texture: &Texture) -> Result<Placement, VramAllocError> {
         let columns = texture.row_halfwords().div_ceil(64).max(1) as u16;
         let per_row = 16 - self.first_column;
-        let full = || VramAllocError::Texture { name: name.into() };
+        let full = || VramAllocError::Texture {
+            name: name.into(),
+            screen: self.screen,
+        };
         if columns > per_row {
             return Err(full());
         }
         // Slots run along page row 0, then page row 1; a texture never straddles rows.
         let row_len = |row: u16| {
-            if row == 1 && self.clut_beside {
-                per_row - 1
+            if row == 1 {
+                per_row - self.clut_columns
             } else {
                 per_row
             }
@@ -151,7 +169,10 @@ impl VramAllocator {
             if self.clut_y >= self.clut_bottom
                 || len > self.clut_right.saturating_sub(self.clut_left)
             {
-                return Err(VramAllocError::Clut { name: name.into() });
+                return Err(VramAllocError::Clut {
+                    name: name.into(),
+                    screen: self.screen,
+                });
             }
             let at = (self.clut_x, self.clut_y);
             self.clut_x += len;
@@ -182,7 +203,7 @@ mod tests {
 
     #[test]
     fn pages_right_of_display_and_cluts_below() {
-        let mut a = VramAllocator::new(320, 240);
+        let mut a = VramAllocator::new(320, 240, 16);
         let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
         assert_eq!((p.page_x, p.page_y, p.clut), (320, 0, Some((0, 480))));
         let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
@@ -196,7 +217,7 @@ mod tests {
     /// lines 256..511, four to a line, and no texture overlaps them.
     #[test]
     fn cluts_beside_full_height_buffers() {
-        let mut a = VramAllocator::new(640, 256);
+        let mut a = VramAllocator::new(640, 256, 16);
         let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
         assert_eq!((p.page_x, p.page_y, p.clut), (640, 0, Some((960, 256))));
         let mut pages = vec![(p.page_x, p.page_y)];
@@ -219,17 +240,53 @@ mod tests {
             pages.iter().all(|&(x, y)| y == 0 || x + 64 <= 960),
             "{pages:?}"
         );
-        // An 8-bit CLUT (256 entries) does not fit the 64-halfword column.
-        let mut b = VramAllocator::new(640, 256);
+    }
+
+    /// With an 8-bit texture in the scene, the CLUT strip beside full-height buffers is four
+    /// columns wide (x 768..1023: 256 entries, one CLUT to a line) and textures keep out of it.
+    #[test]
+    fn eight_bit_cluts_beside_full_height_buffers() {
+        let mut a = VramAllocator::new(640, 256, 256);
+        let p = a.place("a", &tex(Depth::Clut8, 128)).unwrap();
+        assert_eq!((p.page_x, p.page_y, p.clut), (640, 0, Some((768, 256))));
+        let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+        assert_eq!(q.clut, Some((768, 257)));
+        let mut pages = vec![(p.page_x, p.page_y, 1), (q.page_x, q.page_y, 1)];
+        while let Ok(r) = a.place("c", &tex(Depth::Clut4, 64)) {
+            pages.push((r.page_x, r.page_y, 1));
+        }
+        // Row 0: columns 10..15 (six); row 1: columns 10..11 (two) left of the strip.
+        assert_eq!(pages.iter().map(|p| p.2).sum::<u16>(), 8);
+        assert!(
+            pages.iter().all(|&(x, y, _)| y == 0 || x + 64 <= 768),
+            "{pages:?}"
+        );
+    }
+
+    /// A texture that cannot fit names the screen size that left no room.
+    #[test]
+    fn full_names_the_screen_size() {
+        let mut a = VramAllocator::new(640, 256, 256);
+        let e = a.place("wide", &tex(Depth::Direct15, 256)).unwrap();
+        assert_eq!((e.page_x, e.page_y), (640, 0));
+        let e = a.place("wide2", &tex(Depth::Direct15, 256)).unwrap_err();
         assert_eq!(
-            b.place("d", &tex(Depth::Clut8, 128)).unwrap_err(),
-            VramAllocError::Clut { name: "d".into() }
+            e,
+            VramAllocError::Texture {
+                name: "wide2".into(),
+                screen: (640, 256)
+            }
+        );
+        let text = e.to_string();
+        assert!(
+            text.contains("640x256") && text.contains("--size"),
+            "{text}"
         );
     }
 
     #[test]
     fn reports_full() {
-        let mut a = VramAllocator::new(320, 240);
+        let mut a = VramAllocator::new(320, 240, 16);
         let mut placed = 0;
         while a.place("t", &tex(Depth::Direct15, 256)).is_ok() {
             placed += 1;
@@ -242,7 +299,10 @@ mod tests {
         }
         assert_eq!(
             a.place("x", &tex(Depth::Clut4, 8)).unwrap_err(),
-            VramAllocError::Texture { name: "x".into() }
+            VramAllocError::Texture {
+                name: "x".into(),
+                screen: (320, 240)
+            }
         );
     }
 }
