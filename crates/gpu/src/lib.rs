@@ -39,6 +39,7 @@ pub use dma::{
 pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 pub use gp0::PendingInput;
 use state::DrawState;
+pub use state::{BlendMode, ClutAttr, Texpage, TextureDepth};
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 

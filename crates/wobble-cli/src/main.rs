@@ -8,7 +8,7 @@ use gpu::{DisplayArea, Gpu, command_stream};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use wobble::vram_image::{self, Expand, PageDepth};
+use wobble::vram_image::{self, Expand};
 
 mod inspect;
 mod output;
@@ -299,9 +299,9 @@ fn dump(args: &DumpArgs) -> Result<()> {
     if let Some(page) = &args.texpage {
         let (px, py) = parse_pair(page, "--texpage")?;
         let depth = match args.depth.unwrap_or(4) {
-            4 => PageDepth::Clut4,
-            8 => PageDepth::Clut8,
-            15 => PageDepth::Direct15,
+            4 => gpu::TextureDepth::Clut4,
+            8 => gpu::TextureDepth::Clut8,
+            15 => gpu::TextureDepth::Direct15,
             d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
         };
         let clut = parse_pair(args.clut.as_deref().unwrap_or("0,0"), "--clut")?;

@@ -1,11 +1,12 @@
 //! `wobble render`: the scene pipeline driven from the command line.
 
+use gte::DivideMode;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::Instant;
 use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
-use wobble::scene::{Divide, Scene, WIDTHS};
+use wobble::scene::{Scene, WIDTHS};
 
 /// Largest estimated output written without `--large-output`.
 pub const MAX_OUTPUT_BYTES: u64 = 256_000_000;
@@ -72,12 +73,12 @@ pub enum DivideArg {
     F32,
 }
 
-impl From<DivideArg> for Divide {
-    fn from(d: DivideArg) -> Divide {
+impl From<DivideArg> for DivideMode {
+    fn from(d: DivideArg) -> DivideMode {
         match d {
-            DivideArg::Unr => Divide::Unr,
-            DivideArg::Exact => Divide::Exact,
-            DivideArg::F32 => Divide::F32,
+            DivideArg::Unr => DivideMode::Unr,
+            DivideArg::Exact => DivideMode::Exact,
+            DivideArg::F32 => DivideMode::F32,
         }
     }
 }
@@ -125,7 +126,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         tessellation: args.tessellation,
         dither: args.no_dither.then_some(false),
         split_extent: args.split_extent,
-        divide_mode: args.divide.map_or(accuracy.divide, Divide::from).into(),
+        divide_mode: args.divide.map_or(accuracy.divide, DivideMode::from),
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };

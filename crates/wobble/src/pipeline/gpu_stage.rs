@@ -4,9 +4,9 @@
 
 use super::Renderer;
 use super::gte_stage::ProjectedFace;
-use gpu::Gpu;
 use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
 use gpu::texture::ClutCache;
+use gpu::{BlendMode, ClutAttr, Gpu, Texpage};
 
 /// Frame-wide settings of the precise path.
 #[derive(Clone, Copy)]
@@ -34,26 +34,20 @@ fn draw_precise(
         dither,
         perspective,
     } = place;
-    let texture = f.texture.map(|(clut_attr, tpage)| gpu::primitive::Texture {
-        page_x: ((tpage & 0xF) * 64) as u16,
-        page_y: (((tpage >> 4) & 1) * 256) as u16,
-        depth: match (tpage >> 7) & 3 {
-            0 => gpu::state::TextureDepth::Clut4,
-            1 => gpu::state::TextureDepth::Clut8,
-            _ => gpu::state::TextureDepth::Direct15,
-        },
-        clut_x: ((clut_attr & 0x3F) * 16) as u16,
-        clut_y: ((clut_attr >> 6) & 0x1FF) as u16,
-        raw: false,
+    let texture = f.texture.map(|(clut_attr, tpage)| {
+        let (page, clut) = (Texpage::from_bits(tpage), ClutAttr::from_bits(clut_attr));
+        gpu::primitive::Texture {
+            page_x: page.page_x,
+            page_y: page.page_y,
+            depth: page.depth,
+            clut_x: clut.x,
+            clut_y: clut.y,
+            raw: false,
+        }
     });
     let n = if f.quad { 4 } else { 3 };
     let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
-    let blend = f.blend.map(|b| match b {
-        0 => gpu::state::BlendMode::Average,
-        1 => gpu::state::BlendMode::Add,
-        2 => gpu::state::BlendMode::Subtract,
-        _ => gpu::state::BlendMode::AddQuarter,
-    });
+    let blend = f.blend.map(|b| BlendMode::from_bits(u32::from(b)));
     let vertex = |k: usize| gpu::primitive::Vertex {
         x: f.xy[k].0 as i32,
         y: f.xy[k].1 as i32,

@@ -18,9 +18,9 @@ mod trace;
 pub use object::{angle, object_rotation, object_transform, prepare};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
-use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{InvalidScene, Scene};
+use gpu::TextureDepth;
 use gpu::ordering_table::{OrderingTable, OtError};
 use gpu::rasterizer::precise::PreciseVertex;
 use gpu::texture::ClutCache;
@@ -277,7 +277,7 @@ impl Renderer {
                 .any(|o| o.texture == Some(index) && o.blend.is_some());
             let mark = |c: u16| if blended && c != 0 { c | 0x8000 } else { c };
             let (texels, clut) = match t.texture.depth {
-                Depth::Direct15 => {
+                TextureDepth::Direct15 => {
                     let texels: Vec<u16> = t.texture.halfwords().into_iter().map(mark).collect();
                     (texels, Vec::new())
                 }
@@ -312,7 +312,7 @@ impl Renderer {
                 .saturating_add(capacity)
                 .min(MAX_POLYGONS);
             let texture = o.texture.and_then(|t| {
-                let depth = scene.textures.get(t)?.texture.depth.bits();
+                let depth = scene.textures.get(t)?.texture.depth;
                 Some((*placements.get(t)?, depth))
             });
             objects.push(PreparedObject {

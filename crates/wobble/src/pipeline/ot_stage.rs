@@ -73,7 +73,11 @@ impl Renderer {
             // draw-mode packet (E1) linked after it at the same entry comes out just before
             // it (docs/hardware/gpu.md §2, §6).
             if let (None, Some(mode)) = (f.texture, f.blend) {
-                let e1 = 0xE100_0000 | (dither as u32) << 9 | u32::from(mode & 3) << 5;
+                let blend = gpu::Texpage {
+                    blend: gpu::BlendMode::from_bits(u32::from(mode)),
+                    ..gpu::Texpage::default()
+                };
+                let e1 = 0xE100_0000 | (dither as u32) << 9 | blend.bits();
                 // A full primitive buffer leaves the polygon in the default mode.
                 let _ = self.ot.insert(f.ot_index as usize, &[e1]);
             }

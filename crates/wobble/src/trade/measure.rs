@@ -7,7 +7,8 @@ use crate::pipeline::{
 };
 use crate::reference::{self, ReferenceFrame, rotation};
 use crate::scene::Scene;
-use crate::scene::texture::{Depth, Texture};
+use crate::scene::texture::Texture;
+use gpu::TextureDepth;
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
 use gte::{DivideMode, UnsupportedDivideMode};
 use std::time::Instant;
@@ -37,7 +38,7 @@ pub fn coordinate_scene(scene: &Scene) -> Scene {
                 ]
             })
             .collect();
-        if let Ok(tex) = Texture::from_rgba(w, h, &pixels, Depth::Direct15) {
+        if let Ok(tex) = Texture::from_rgba(w, h, &pixels, TextureDepth::Direct15) {
             t.texture = tex;
         }
     }
