@@ -477,7 +477,15 @@ mod properties {
             height in 1u16..=240,
             textures in prop::collection::vec((0u8..3, 1u16..=256, 1u16..=256), 1..24),
         ) {
-            let mut alloc = wobble::scene::vram_alloc::VramAllocator::new(width, height);
+            let widest_clut = if textures.iter().any(|t| t.0 == 1) {
+                256
+            } else if textures.iter().any(|t| t.0 == 0) {
+                16
+            } else {
+                0
+            };
+            let mut alloc =
+                wobble::scene::vram_alloc::VramAllocator::new(width, height, widest_clut);
             // Rectangles (x, y, w, h) in halfwords.
             let mut used = vec![(0u32, 0u32, u32::from(width), 2 * u32::from(height))];
             for (i, &(d, w, h)) in textures.iter().enumerate() {
