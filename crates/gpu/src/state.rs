@@ -133,8 +133,8 @@ impl Texpage {
         } else {
             self.depth.bits()
         };
-        (self.page_x as u32 / 64 & 0xF)
-            | (self.page_y as u32 / 256 & 1) << 4
+        ((self.page_x as u32 / 64) & 0xF)
+            | ((self.page_y as u32 / 256) & 1) << 4
             | self.blend.bits() << 5
             | depth << 7
             | (self.texture_disable as u32) << 11
@@ -163,7 +163,7 @@ impl ClutAttr {
     /// Encode (docs/hardware/gpu.md §7): `x` / 16 and `y` are taken modulo the field widths
     /// (64 columns, 512 lines).
     pub const fn bits(self) -> u32 {
-        (self.x as u32 / 16 & 0x3F) | (self.y as u32 & 0x1FF) << 6
+        ((self.x as u32 / 16) & 0x3F) | (self.y as u32 & 0x1FF) << 6
     }
 }
 
