@@ -384,3 +384,19 @@ pub fn divide_stability(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sweep reports every row once, in order, against the total: H = 0, 30000, 60000
+    /// (three values of 0..=FFFFh at step 30000) in each of three modes, nine rows.
+    #[test]
+    fn divide_sweep_reports_each_row() {
+        let mut seen = Vec::new();
+        let result = divide_stability(30000, &mut |done, total| seen.push((done, total)));
+        assert_eq!(result.len(), 3);
+        let want: Vec<(u64, u64)> = (1..=9).map(|d| (d, 9)).collect();
+        assert_eq!(seen, want);
+    }
+}
