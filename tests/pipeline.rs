@@ -474,16 +474,14 @@ mod properties {
         #[test]
         fn vram_placements_are_disjoint(
             width in prop::sample::select(vec![256u16, 320, 368, 512, 640]),
-            height in 1u16..=240,
+            height in prop_oneof![1u16..=256, Just(256u16)],
             textures in prop::collection::vec((0u8..3, 1u16..=256, 1u16..=256), 1..24),
         ) {
-            let widest_clut = if textures.iter().any(|t| t.0 == 1) {
-                256
-            } else if textures.iter().any(|t| t.0 == 0) {
-                16
-            } else {
-                0
-            };
+            let widest_clut = textures
+                .iter()
+                .map(|&(d, _, _)| [16usize, 256, 0][d as usize])
+                .max()
+                .unwrap_or(0);
             let mut alloc =
                 wobble::scene::vram_alloc::VramAllocator::new(width, height, widest_clut);
             // Rectangles (x, y, w, h) in halfwords.

@@ -56,6 +56,7 @@ pub static PLAIN_TABLE: ShadeTable = shade_table(0);
 
 /// 8-bit channel to 5 bits with a dither offset: clamp(c + d, 0, 255) >> 3 (docs/hardware/gpu.md §6).
 #[inline(always)]
+#[cfg(test)]
 pub fn dither_channel(c: i32, offset: i32) -> u16 {
     ((c + offset).clamp(0, 255) >> 3) as u16
 }
@@ -75,6 +76,7 @@ pub const fn unpack888(color: u32) -> [u8; 3] {
 /// Modulate a 5-bit texel channel by an 8-bit colour and dither:
 /// clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3 (docs/hardware/gpu.md §6). 80h is the identity.
 #[inline(always)]
+#[cfg(test)]
 pub fn modulate_channel(t5: u16, c8: i32, offset: i32) -> u16 {
     dither_channel((t5 as i32 * c8) >> 4, offset)
 }

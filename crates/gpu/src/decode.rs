@@ -27,10 +27,11 @@ use crate::gp0::{
     self, MAX_PACKET, Polyline, PolylineStep, is_terminator, line_packet, packet_len,
     polygon_packet, rectangle_packet,
 };
-use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex};
-use crate::rasterizer::{
-    Coverage, PixelBounds, classify_line, classify_rectangle, classify_triangle,
-};
+/// The primitives a decoded command carries, as the rasterizer receives them.
+pub use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex};
+/// What a primitive covers, or why the hardware drops it.
+pub use crate::rasterizer::{Coverage, DropReason, PixelBounds};
+use crate::rasterizer::{classify_line, classify_rectangle, classify_triangle};
 use crate::state::{BlendMode, DrawState, TextureDepth};
 use crate::transfer::TransferRect;
 use crate::{Gpu, VRAM_HEIGHT, VRAM_WIDTH};

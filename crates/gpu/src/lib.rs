@@ -10,7 +10,7 @@
 
 extern crate alloc;
 
-pub mod color;
+mod color;
 pub mod command_stream;
 pub mod decode;
 mod display;
@@ -18,13 +18,15 @@ mod dma;
 mod drawing;
 mod frame;
 mod gp0;
-pub mod ordering_table;
-pub mod primitive;
-pub mod rasterizer;
+mod ordering_table;
+#[cfg(feature = "precise")]
+pub mod precise;
+mod primitive;
+mod rasterizer;
 #[cfg(feature = "serde")]
 mod serde_array;
-pub mod state;
-pub mod texture;
+mod state;
+mod texture;
 mod timing;
 mod transfer;
 
@@ -38,8 +40,13 @@ pub use dma::{
 };
 pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
 pub use gp0::PendingInput;
-use state::DrawState;
-pub use state::{BlendMode, ClutAttr, Texpage, TextureDepth};
+pub use ordering_table::{
+    END_MARKER, MAX_DEPTH, MAX_PACKET_WORDS, MAX_WORDS, OrderingTable, OtError, WalkStats, walk_ram,
+};
+pub use state::{
+    BlendMode, ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, Texpage, TextureDepth,
+    TextureWindow,
+};
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
 

@@ -1,8 +1,8 @@
 //! GP0 transfers and environment, GP1, GPUSTAT, packet assembly and ordering tables, on
 //! hand-worked cases (docs/hardware/gpu.md §2, §8, §9).
 
-use gpu::ordering_table::{OrderingTable, OtError, walk_ram};
 use gpu::{Gpu, command_stream};
+use gpu::{OrderingTable, OtError, walk_ram};
 use proptest::prelude::*;
 
 fn px(g: &Gpu, x: usize, y: usize) -> u16 {

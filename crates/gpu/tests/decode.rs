@@ -2,7 +2,7 @@
 //! bounds, and a command whose primitives the rasterizer drops changes no pixel.
 
 use gpu::Gpu;
-use gpu::rasterizer::Coverage;
+use gpu::decode::Coverage;
 use proptest::prelude::*;
 
 /// A signed 11-bit vertex word from x, y in -1100..1100 (wrapping exercised).

@@ -1,7 +1,7 @@
 //! Ordering-table clear, insertion and DMA2 walk (docs/hardware/gpu.md §2), checked against hand-built
 //! linked lists.
 
-use gpu::ordering_table::{END_MARKER, OrderingTable, OtError, walk_ram};
+use gpu::{END_MARKER, OrderingTable, OtError, walk_ram};
 
 fn collect(ot: &OrderingTable) -> Vec<Vec<u32>> {
     let mut out = Vec::new();

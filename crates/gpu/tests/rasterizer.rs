@@ -679,6 +679,11 @@ mod model {
     }
 }
 
+/// An 11-bit signed GP0 vertex coordinate as the GPU reads it (docs/hardware/gpu.md §2).
+fn sext11(v: i32) -> i64 {
+    (((v as i64) & 0x7FF) ^ 0x400) - 0x400
+}
+
 fn coordinate() -> impl Strategy<Value = i32> {
     prop_oneof![4 => -40i32..120, 1 => -1100i32..1100]
 }
@@ -697,54 +702,62 @@ proptest! {
         dither in any::<bool>(),
         clip in (0u16..30, 0u16..30, 40u16..1024, 40u16..300),
     ) {
-        use gpu::primitive::{Texture, Triangle, Vertex};
-        use gpu::state::{DrawState, TextureDepth};
-        let mut vram = gpu::Vram::new();
+        // Drawn through GP0: drawing area E3h/E4h, E1h dithering (and the 15-bit page at
+        // (512, 256) for the textured case, which its texpage attribute also selects), then
+        // a Gouraud triangle (30h) or a raw-textured one (25h).
+        let mut g = Gpu::new();
         for v in 0..256usize {
             for u in 0..256usize {
-                vram.set_pixel(512 + u, 256 + v, (u | (v & 0x7F) << 8) as u16);
+                g.vram_mut().set_pixel(512 + u, 256 + v, (u | (v & 0x7F) << 8) as u16);
             }
         }
-        let background = vram.clone();
-        let mut state = DrawState::default();
-        state.area.left = clip.0;
-        state.area.top = clip.1;
-        state.area.right = clip.2.min(511);
-        state.area.bottom = clip.3.min(255);
-        let vertex = |p: &(i32, i32, [u8; 5])| Vertex {
-            x: p.0,
-            y: p.1,
-            color: [p.2[0], p.2[1], p.2[2]],
-            u: p.2[3],
-            v: p.2[4],
+        let background = g.vram().clone();
+        let area = (clip.0, clip.1, clip.2.min(511), clip.3.min(255));
+        let texpage = 8 | 1 << 4 | 2 << 7;
+        g.gp0_words(&[
+            0xE100_0000 | texpage | (dither as u32) << 9,
+            0xE300_0000 | area.0 as u32 | (area.1 as u32) << 10,
+            0xE400_0000 | area.2 as u32 | (area.3 as u32) << 10,
+            0xE500_0000,
+        ]);
+        let rgb = |p: &(i32, i32, [u8; 5])| {
+            p.2[0] as u32 | (p.2[1] as u32) << 8 | (p.2[2] as u32) << 16
         };
-        let tri = Triangle {
-            vertices: [vertex(&pts[0]), vertex(&pts[1]), vertex(&pts[2])],
-            gouraud: !textured,
-            texture: textured.then_some(Texture {
-                page_x: 512,
-                page_y: 256,
-                depth: TextureDepth::Direct15,
-                clut_x: 0,
-                clut_y: 0,
-                raw: true,
-            }),
-            blend: None,
-            dither: dither && !textured,
-        };
-        let mut clut = gpu::texture::ClutCache::default();
-        gpu::rasterizer::draw_triangle(&mut vram, &state, &mut clut, &tri);
+        let pos = |p: &(i32, i32, [u8; 5])| xy(p.0, p.1);
+        let uv = |p: &(i32, i32, [u8; 5])| p.2[3] as u32 | (p.2[4] as u32) << 8;
+        if textured {
+            g.gp0_words(&[
+                0x2500_0000,
+                pos(&pts[0]),
+                uv(&pts[0]),
+                pos(&pts[1]),
+                uv(&pts[1]) | texpage << 16,
+                pos(&pts[2]),
+                uv(&pts[2]),
+            ]);
+        } else {
+            g.gp0_words(&[
+                0x3000_0000 | rgb(&pts[0]),
+                pos(&pts[0]),
+                rgb(&pts[1]),
+                pos(&pts[1]),
+                rgb(&pts[2]),
+                pos(&pts[2]),
+            ]);
+        }
+        let vram = g.vram();
 
         let mut expected = background;
+        // GP0 vertex coordinates are 11-bit signed (docs/hardware/gpu.md §2).
         let input = pts.iter().map(|p| model::V {
-            x: p.0 as i64,
-            y: p.1 as i64,
+            x: sext11(p.0),
+            y: sext11(p.1),
             a: [p.2[0], p.2[1], p.2[2], p.2[3], p.2[4]].map(|c| c as i64),
         });
         let input: Vec<model::V> = input.collect();
         let input: [model::V; 3] = input.try_into().ok().unwrap();
-        let a = state.area;
-        for p in model::triangle(input, (a.left as i64, a.top as i64, a.right as i64, a.bottom as i64)) {
+        let a = area;
+        for p in model::triangle(input, (a.0 as i64, a.1 as i64, a.2 as i64, a.3 as i64)) {
             let value = if textured {
                 let t = (p.attr[3] | (p.attr[4] & 0x7F) << 8) as u16;
                 if t == 0 {
@@ -752,14 +765,14 @@ proptest! {
                 }
                 t
             } else {
-                let d = tri.dither;
+                let d = dither; // Gouraud untextured triangles follow E1 bit 9 (§6)
                 model::channel(p.attr[0], p.x, p.y, d)
                     | model::channel(p.attr[1], p.x, p.y, d) << 5
                     | model::channel(p.attr[2], p.x, p.y, d) << 10
             };
             expected.set_pixel(p.x as usize, p.y as usize, value);
         }
-        prop_assert!(vram == expected, "VRAM differs from the model");
+        prop_assert!(*vram == expected, "VRAM differs from the model");
     }
 }
 
@@ -852,31 +865,39 @@ proptest! {
         dither in any::<bool>(),
         clip in (0u16..30, 0u16..30, 40u16..1024, 40u16..512),
     ) {
-        use gpu::primitive::{Line, Vertex};
-        use gpu::state::DrawState;
-        let mut vram = gpu::Vram::new();
-        let mut state = DrawState::default();
-        state.area.left = clip.0;
-        state.area.top = clip.1;
-        state.area.right = clip.2.min(1023);
-        state.area.bottom = clip.3.min(511);
-        let vertex = |e: &(i32, i32, [u8; 3])| Vertex { x: e.0, y: e.1, color: e.2, u: 0, v: 0 };
-        let line = Line {
-            vertices: [vertex(&ends[0]), vertex(&ends[1])],
-            gouraud,
-            blend: None,
-            dither,
+        // Drawn through GP0: drawing area, E1h dithering, then a flat (40h) or Gouraud
+        // (50h) line.
+        let mut g = Gpu::new();
+        let area = (clip.0, clip.1, clip.2.min(1023), clip.3.min(511));
+        g.gp0_words(&[
+            0xE100_0000 | (dither as u32) << 9,
+            0xE300_0000 | area.0 as u32 | (area.1 as u32) << 10,
+            0xE400_0000 | area.2 as u32 | (area.3 as u32) << 10,
+            0xE500_0000,
+        ]);
+        let rgb = |e: &(i32, i32, [u8; 3])| {
+            e.2[0] as u32 | (e.2[1] as u32) << 8 | (e.2[2] as u32) << 16
         };
-        gpu::rasterizer::draw_line(&mut vram, &state, &line);
+        let pos = |e: &(i32, i32, [u8; 3])| xy(e.0, e.1);
+        if gouraud {
+            g.gp0_words(&[
+                0x5000_0000 | rgb(&ends[0]),
+                pos(&ends[0]),
+                rgb(&ends[1]),
+                pos(&ends[1]),
+            ]);
+        } else {
+            g.gp0_words(&[0x4000_0000 | rgb(&ends[0]), pos(&ends[0]), pos(&ends[1])]);
+        }
+        let vram = g.vram();
         let mut expected = gpu::Vram::new();
-        let e = |i: usize| (ends[i].0 as i64, ends[i].1 as i64, ends[i].2.map(|c| c as i64));
-        let a = state.area;
-        let clip = (a.left as i64, a.top as i64, a.right as i64, a.bottom as i64);
+        let e = |i: usize| (sext11(ends[i].0), sext11(ends[i].1), ends[i].2.map(|c| c as i64));
+        let clip = (area.0 as i64, area.1 as i64, area.2 as i64, area.3 as i64);
         for (x, y, c) in model_line([e(0), e(1)], gouraud, clip) {
             let c = c.map(|c| model::channel(c as u32, x, y, dither));
             expected.set_pixel(x as usize, y as usize, c[0] | c[1] << 5 | c[2] << 10);
         }
-        prop_assert!(vram == expected, "VRAM differs from the model");
+        prop_assert!(*vram == expected, "VRAM differs from the model");
     }
 }
 

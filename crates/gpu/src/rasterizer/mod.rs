@@ -5,7 +5,8 @@
 //! opaque triangle runs a loop with no texture, blend, dither or mask code in it.
 
 mod line;
-pub mod precise;
+#[cfg(feature = "precise")]
+pub(crate) mod precise;
 mod rectangle;
 mod triangle;
 
@@ -442,17 +443,7 @@ fn env<'a>(
 }
 
 /// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
-/// blending, dithering, mask. Returns what was drawn.
-pub fn draw_triangle(
-    vram: &mut Vram,
-    state: &DrawState,
-    clut: &mut ClutCache,
-    tri: &Triangle,
-) -> DrawCount {
-    draw_triangle_rows(vram, state, clut, tri, Rows::All)
-}
-
-/// [`draw_triangle`] writing only the lines `rows` keeps.
+/// blending, dithering, mask, writing only the lines `rows` keeps. Returns what was drawn.
 pub(crate) fn draw_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
@@ -481,7 +472,8 @@ pub(crate) fn draw_triangle_rows(
 /// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
 /// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
 /// The triangle's own vertex positions are ignored in favour of `at`.
-pub fn draw_triangle_precise(
+#[cfg(feature = "precise")]
+pub(crate) fn draw_triangle_precise(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
@@ -502,13 +494,9 @@ pub fn draw_triangle_precise(
     }
 }
 
-/// Draw one line segment, both endpoints included (docs/hardware/gpu.md §4). Returns the points stepped.
-pub fn draw_line(vram: &mut Vram, state: &DrawState, line: &Line) -> DrawCount {
-    draw_line_rows(vram, state, line, Rows::All)
-}
-
-/// [`draw_line`] writing only the lines `rows` keeps. Lines test each pixel's row, so the
-/// filter is a const parameter: an unfiltered line has no row test.
+/// Draw one line segment, both endpoints included (docs/hardware/gpu.md §4), writing only the
+/// lines `rows` keeps. Returns the points stepped. Lines test each pixel's row, so the filter
+/// is a const parameter: an unfiltered line has no row test.
 pub(crate) fn draw_line_rows(
     vram: &mut Vram,
     state: &DrawState,
@@ -532,17 +520,8 @@ pub(crate) fn draw_line_rows(
     dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
 }
 
-/// Draw one rectangle (docs/hardware/gpu.md §5). Returns what was drawn.
-pub fn draw_rectangle(
-    vram: &mut Vram,
-    state: &DrawState,
-    clut: &mut ClutCache,
-    rect: &Rectangle,
-) -> DrawCount {
-    draw_rectangle_rows(vram, state, clut, rect, Rows::All)
-}
-
-/// [`draw_rectangle`] writing only the lines `rows` keeps.
+/// Draw one rectangle (docs/hardware/gpu.md §5), writing only the lines `rows` keeps. Returns
+/// what was drawn.
 pub(crate) fn draw_rectangle_rows(
     vram: &mut Vram,
     state: &DrawState,

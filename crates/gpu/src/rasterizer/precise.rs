@@ -21,9 +21,9 @@ pub const SUBPIXEL_BITS: u32 = 4;
 /// Per-vertex data the hardware does not have.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PreciseVertex {
-    /// X in 1/16 pixel, drawing offset included.
+    /// X in 1/16 pixel (relative to the drawing offset, as packet vertices are).
     pub x: i32,
-    /// Y in 1/16 pixel, drawing offset included.
+    /// Y in 1/16 pixel (relative to the drawing offset).
     pub y: i32,
     /// 1/z scaled by 2^24 (any positive scale shared by the three vertices works); used
     /// only for perspective-correct texture coordinates.

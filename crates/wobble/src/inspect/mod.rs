@@ -7,10 +7,10 @@
 //! only runs the commands, compares VRAM before and after each, and writes files.
 
 use base64_lite::encode as base64;
+use gpu::TextureDepth;
 use gpu::command_stream::{Port, StreamCommand};
+use gpu::decode::{Coverage, PixelBounds};
 use gpu::decode::{Decoded, Kind, Primitive, TracedCommand, Tracer};
-use gpu::rasterizer::{Coverage, PixelBounds};
-use gpu::state::TextureDepth;
 use gpu::{Gpu, VRAM_HEIGHT, VRAM_LEN, VRAM_WIDTH};
 use image::{Rgb, RgbImage};
 use serde_json::{Value, json};
@@ -165,7 +165,7 @@ impl TextureViews {
     fn view(
         &mut self,
         vram: &[u16],
-        t: &gpu::primitive::Texture,
+        t: &gpu::decode::Texture,
         dir: &Path,
     ) -> Result<Option<String>, String> {
         let depth = t.depth;

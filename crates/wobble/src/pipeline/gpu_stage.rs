@@ -3,84 +3,35 @@
 //! rasterizer in the same order), the display flip, and texture uploads (GP0 A0h).
 
 use super::Renderer;
+#[cfg(feature = "accuracy-knobs")]
+use super::SubpixelVertex;
+#[cfg(feature = "accuracy-knobs")]
 use super::gte_stage::ProjectedFace;
-use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
-use gpu::texture::ClutCache;
-use gpu::{BlendMode, ClutAttr, Gpu, Texpage};
+use gpu::Gpu;
 
-/// Frame-wide settings of the precise path.
-#[derive(Clone, Copy)]
-struct PreciseFrame {
-    /// Drawing offset Y of the back buffer.
-    offset_y: i32,
-    /// E1 dithering.
-    dither: bool,
-    /// Perspective-correct texture coordinates.
-    perspective: bool,
-}
-
-/// Draw one polygon through the non-hardware precise rasterizer: the same colours, texture,
-/// blending and dithering a GP0 packet would carry, at sub-pixel positions.
+/// Draw one polygon through the GPU's non-hardware precise path: the same GP0 packet (and
+/// blend-mode word) the ordering table would carry, at sub-pixel positions.
+#[cfg(feature = "accuracy-knobs")]
 fn draw_precise(
     gpu: &mut Gpu,
-    state: &gpu::state::DrawState,
-    clut: &mut ClutCache,
     f: &ProjectedFace,
-    precise: &[PreciseVertex; 4],
-    place: PreciseFrame,
+    at: &[SubpixelVertex; 4],
+    dither: bool,
+    perspective: bool,
 ) {
-    let PreciseFrame {
-        offset_y,
-        dither,
-        perspective,
-    } = place;
-    let texture = f.texture.map(|(clut_attr, tpage)| {
-        let (page, clut) = (Texpage::from_bits(tpage), ClutAttr::from_bits(clut_attr));
-        gpu::primitive::Texture {
-            page_x: page.page_x,
-            page_y: page.page_y,
-            depth: page.depth,
-            clut_x: clut.x,
-            clut_y: clut.y,
-            raw: false,
-        }
-    });
-    let n = if f.quad { 4 } else { 3 };
-    let gouraud = f.color[1..n].iter().any(|c| *c != f.color[0]);
-    let blend = f.blend.map(|b| BlendMode::from_bits(u32::from(b)));
-    let vertex = |k: usize| gpu::primitive::Vertex {
-        x: f.xy[k].0 as i32,
-        y: f.xy[k].1 as i32,
-        color: f.color[k],
-        u: f.uv[k].0,
-        v: f.uv[k].1,
-    };
-    let at = |k: usize| PreciseVertex {
-        y: precise[k].y + (offset_y << SUBPIXEL_BITS),
-        ..precise[k]
-    };
-    let triangles: &[[usize; 3]] = if f.quad {
-        &[[0, 1, 2], [1, 2, 3]]
-    } else {
-        &[[0, 1, 2]]
-    };
-    for t in triangles {
-        let tri = gpu::primitive::Triangle {
-            vertices: t.map(vertex),
-            gouraud,
-            texture,
-            blend,
-            dither: dither && gpu::primitive::dither_applies(gouraud, texture.is_some(), false),
-        };
-        gpu::rasterizer::draw_triangle_precise(
-            gpu.vram_mut(),
-            state,
-            clut,
-            &tri,
-            &t.map(at),
-            perspective,
-        );
+    if let Some(e1) = f.blend_e1(dither) {
+        gpu.gp0(e1);
     }
+    let mut packet = [0u32; 12];
+    let len = f.packet(&mut packet);
+    let n = if f.quad { 4 } else { 3 };
+    let at = at.map(|v| gpu::precise::PreciseVertex {
+        x: v.x,
+        y: v.y,
+        inv_z: v.inv_z,
+    });
+    // The packet and positions are built together here, so their lengths agree.
+    let _ = gpu.draw_polygon_precise(&packet[..len], &at[..n], perspective);
 }
 
 impl Renderer {
@@ -93,24 +44,20 @@ impl Renderer {
         // Bad links cannot occur in a table this renderer built; a walk error leaves the
         // frame partly drawn rather than stopping the renderer.
         if self.options.precise() {
-            let state = *gpu.draw_state();
-            let (scratch, at, clut, perspective) = (
-                &self.scratch,
-                &self.precise_vertices,
-                &mut self.clut,
-                self.options.perspective_uv,
-            );
-            let _ = self.ot.walk(|words| {
-                let i = words.first().map_or(usize::MAX, |&i| i as usize);
-                if let (Some(f), Some(at)) = (scratch.get(i), at.get(i)) {
-                    let place = PreciseFrame {
-                        offset_y: buffer_y as i32,
-                        dither,
-                        perspective,
-                    };
-                    draw_precise(gpu, &state, clut, f, at, place);
-                }
-            });
+            #[cfg(feature = "accuracy-knobs")]
+            {
+                let (scratch, at, perspective) = (
+                    &self.scratch,
+                    &self.precise_vertices,
+                    self.options.perspective_uv,
+                );
+                let _ = self.ot.walk(|words| {
+                    let i = words.first().map_or(usize::MAX, |&i| i as usize);
+                    if let (Some(f), Some(at)) = (scratch.get(i), at.get(i)) {
+                        draw_precise(gpu, f, at, dither, perspective);
+                    }
+                });
+            }
         } else {
             let _ = self.ot.walk_into(gpu);
         }

@@ -6,8 +6,7 @@ use super::clip::{Verdict, classify};
 use super::object::{angle, object_rotation, object_transform, to_fixed};
 use super::tessellate::PreparedFace;
 use super::trace::{FaceFate, FaceRecord};
-use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
-use gpu::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
+use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer, SUBPIXEL_BITS, SubpixelVertex};
 use gte::Flag;
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection};
 
@@ -152,13 +151,13 @@ fn precise_vertices_of(
     sz: [u16; 4],
     fine: Option<[(i32, i32); 4]>,
     quad: bool,
-) -> [PreciseVertex; 4] {
+) -> [SubpixelVertex; 4] {
     let whole = xy.map(|(x, y)| (i32::from(x) << SUBPIXEL_BITS, i32::from(y) << SUBPIXEL_BITS));
     let positions = fine.unwrap_or(whole);
     let n = if quad { 4 } else { 3 };
-    let mut precise = [PreciseVertex::default(); 4];
+    let mut precise = [SubpixelVertex::default(); 4];
     for k in 0..n {
-        precise[k] = PreciseVertex {
+        precise[k] = SubpixelVertex {
             x: positions[k].0,
             y: positions[k].1,
             inv_z: (1u32 << 24) / u32::from(sz[k]).max(1),

@@ -21,10 +21,8 @@ pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{InvalidScene, Scene};
 use gpu::TextureDepth;
-use gpu::ordering_table::{OrderingTable, OtError};
-use gpu::rasterizer::precise::PreciseVertex;
-use gpu::texture::ClutCache;
 use gpu::{DisplayArea, Gpu};
+use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
 use gte::DivideMode;
 use gte::typed::Geometry;
@@ -56,6 +54,23 @@ pub fn cap_message(stats: &FrameStats) -> Option<String> {
             stats.capped
         )
     })
+}
+
+/// Fractional bits of the sub-pixel screen positions the precise path draws at (1/16 pixel,
+/// the GPU's `precise::SUBPIXEL_BITS`).
+pub(crate) const SUBPIXEL_BITS: u32 = 4;
+#[cfg(feature = "accuracy-knobs")]
+const _: () = assert!(SUBPIXEL_BITS == gpu::precise::SUBPIXEL_BITS);
+
+/// A vertex for the non-hardware precise path: position in 1/16 pixel relative to the drawing
+/// offset, and 1/Z scaled by 2^24 for perspective-correct texture coordinates.
+/// Without the knobs nothing draws them (`PipelineOptions::precise` is always false).
+#[derive(Clone, Copy, Debug, Default)]
+#[cfg_attr(not(feature = "accuracy-knobs"), allow(dead_code))]
+pub(crate) struct SubpixelVertex {
+    pub(crate) x: i32,
+    pub(crate) y: i32,
+    pub(crate) inv_z: u32,
 }
 
 /// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
@@ -239,10 +254,9 @@ pub struct Renderer {
     capacity: usize,
     display: DisplayArea,
     /// CLUT cache of the precise path (the GPU's own is private to it).
-    clut: ClutCache,
     /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
     /// filled only when the precise path is on, so the hardware path carries none of it.
-    precise_vertices: Vec<[PreciseVertex; 4]>,
+    precise_vertices: Vec<[SubpixelVertex; 4]>,
     /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
     trace: Option<Box<trace::TraceSink>>,
 }
@@ -354,7 +368,6 @@ impl Renderer {
             gpu,
             geometry,
             display,
-            clut: ClutCache::default(),
             precise_vertices: Vec::new(),
             trace: None,
         })
