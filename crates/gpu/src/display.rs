@@ -55,6 +55,23 @@ impl Default for DisplayState {
 }
 
 impl DisplayState {
+    /// Every field within the bits its GP1 command writes (docs/hardware/gpu.md §9).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        let fits = self.dma_direction <= 3
+            && self.start_x <= 0x3FF
+            && self.start_y <= 0x1FF
+            && self.h_range.0 <= 0xFFF
+            && self.h_range.1 <= 0xFFF
+            && self.v_range.0 <= 0x3FF
+            && self.v_range.1 <= 0x3FF;
+        if fits {
+            Ok(())
+        } else {
+            Err("display register wider than its GP1 field")
+        }
+    }
+
     /// The displayed VRAM rectangle. Width: the GP1(06h) range X1..X2 (video cycles,
     /// clamped to the line) in dots of the GP1(08h) resolution, `((X2 - X1) / divider + 2)
     /// & !3` (docs/hardware/timing.md §5), 0 when X2 <= X1. Height: Y2 - Y1 of GP1(07h), clamped

@@ -159,6 +159,26 @@ impl Drawing {
         self.busy == 0 && self.len == 0
     }
 
+    /// The queue indices are in range, the FIFO word count is the queued units' words plus
+    /// the partial unit's, and an idle GPU holds no words.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        if self.head >= QUEUE_LEN || self.len > QUEUE_LEN {
+            return Err("drawing queue index out of range");
+        }
+        let queued = (0..self.len).try_fold(self.partial_words, |acc, i| {
+            let q = self.queue.get((self.head + i) % QUEUE_LEN)?;
+            acc.checked_add(q.words)
+        });
+        if queued != Some(self.fifo_words) {
+            return Err("FIFO word count differs from the queued units");
+        }
+        if self.idle() && self.fifo_words != 0 {
+            return Err("idle GPU with words in the FIFO");
+        }
+        Ok(())
+    }
+
     /// Words waiting in the FIFO.
     pub fn fifo_words(&self) -> u32 {
         self.fifo_words

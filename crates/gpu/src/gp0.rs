@@ -45,6 +45,23 @@ pub(crate) enum PolylineStep {
 }
 
 impl Polyline {
+    /// Vertex coordinates are an 11-bit signed position plus an 11-bit signed drawing
+    /// offset: -2048..=2046 (docs/hardware/gpu.md §2).
+    #[cfg(feature = "serde")]
+    fn check(&self) -> Result<(), &'static str> {
+        let in_range = |c: i32| (-2048..=2046).contains(&c);
+        if self
+            .line
+            .vertices
+            .iter()
+            .all(|v| in_range(v.x) && in_range(v.y))
+        {
+            Ok(())
+        } else {
+            Err("polyline vertex outside the 11-bit position plus offset range")
+        }
+    }
+
     /// A polyline continuing after its first segment.
     pub(crate) fn new(line: Line) -> Self {
         Self {
@@ -121,6 +138,27 @@ impl Gp0State {
     /// No packet or transfer is in progress.
     pub(crate) fn idle(&self) -> bool {
         self.len == 0 && self.mode == Mode::Command
+    }
+
+    /// The packet buffer holds fewer words than its command needs (a complete packet is
+    /// executed the moment its last word arrives), and a transfer or polyline in progress is
+    /// one the GPU could have reached.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        if self.len > MAX_PACKET {
+            return Err("GP0 packet buffer longer than 12 words");
+        }
+        match self.mode {
+            Mode::Command => match self.buf.first() {
+                Some(&cmd) if self.len > 0 && self.len >= packet_len(cmd) => {
+                    Err("complete GP0 packet left unexecuted")
+                }
+                _ => Ok(()),
+            },
+            Mode::Write(t) if self.len == 0 => t.check(),
+            Mode::Polyline(p) if self.len == 0 => p.check(),
+            _ => Err("GP0 packet words during a transfer or polyline"),
+        }
     }
 
     /// A polygon or line packet is being received: psx-spx ("GPU Status Register", "Ready

@@ -24,6 +24,8 @@ pub mod precise;
 mod primitive;
 mod rasterizer;
 #[cfg(feature = "serde")]
+mod save;
+#[cfg(feature = "serde")]
 mod serde_array;
 mod state;
 mod texture;
@@ -43,6 +45,8 @@ pub use gp0::PendingInput;
 pub use ordering_table::{
     END_MARKER, MAX_DEPTH, MAX_PACKET_WORDS, MAX_WORDS, OrderingTable, OtError, WalkStats, walk_ram,
 };
+#[cfg(feature = "serde")]
+pub use save::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState, StateError};
 pub use state::{
     BlendMode, ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, Texpage, TextureDepth,
     TextureWindow,
@@ -133,9 +137,16 @@ impl core::fmt::Debug for Vram {
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
 #[derive(Clone, Debug)]
-#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+///
+/// With the `serde` feature the whole state serializes; deserializing checks every field
+/// against what the hardware can reach (`StateError`); `Gpu::save_state` adds a format
+/// header and version (docs/emulator.md, "Save states").
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(try_from = "save::GpuFields")
+)]
 pub struct Gpu {
-    vram: Vram,
     draw: DrawState,
     clut: ClutCache,
     gp0: gp0::Gp0State,
@@ -148,6 +159,8 @@ pub struct Gpu {
     texture_disable_allowed: bool,
     drawing: drawing::Drawing,
     timing: timing::Timing,
+    /// Last, so the other fields lead a serialized state.
+    vram: Vram,
 }
 
 impl Gpu {

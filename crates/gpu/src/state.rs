@@ -252,6 +252,38 @@ pub struct DrawState {
     pub mask: MaskSettings,
 }
 
+impl DrawState {
+    /// Every field within what E1-E6 and texpage attributes can set (docs/hardware/gpu.md §2):
+    /// page X a multiple of 64 up to 960, page Y 0 or 256, window fields 5 bits, area corners
+    /// 10 bits, offsets signed 11 bits, the reserved depth read as 15-bit.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        let m = &self.mode;
+        let w = &self.window;
+        let a = &self.area;
+        let offset = -1024..=1023;
+        if !m.page_x.is_multiple_of(64) || m.page_x > 960 || !matches!(m.page_y, 0 | 256) {
+            Err("texture page outside the texpage field")
+        } else if m.depth_reserved && m.depth != TextureDepth::Direct15 {
+            Err("reserved texture depth not read as 15-bit")
+        } else if [w.mask_x, w.mask_y, w.offset_x, w.offset_y]
+            .iter()
+            .any(|&f| f > 0x1F)
+        {
+            Err("texture window field wider than 5 bits")
+        } else if [a.left, a.top, a.right, a.bottom]
+            .iter()
+            .any(|&c| c > 0x3FF)
+        {
+            Err("drawing area corner wider than 10 bits")
+        } else if !offset.contains(&self.offset_x) || !offset.contains(&self.offset_y) {
+            Err("drawing offset outside signed 11 bits")
+        } else {
+            Ok(())
+        }
+    }
+}
+
 #[cfg(test)]
 mod field_tests {
     use super::*;

@@ -35,6 +35,19 @@ impl ClutCache {
         self.loaded_8bit = false;
     }
 
+    /// A latched CLUT position is one a CLUT attribute can give: X a multiple of 16 up to
+    /// 1008, Y below 512 (docs/hardware/gpu.md §7); 8-bit entries are only loaded with a position.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        match self.key {
+            Some((x, y)) if !x.is_multiple_of(16) || x > 1008 || y > 511 => {
+                Err("CLUT cache position outside VRAM or not a multiple of 16")
+            }
+            None if self.loaded_8bit => Err("CLUT cache with 8-bit entries but no position"),
+            _ => Ok(()),
+        }
+    }
+
     /// The latched entries.
     pub fn entries(&self) -> &[u16; 256] {
         &self.entries

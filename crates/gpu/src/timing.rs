@@ -295,6 +295,25 @@ impl Timing {
         }
     }
 
+    /// The conversion remainder is below the clock ratio's denominator, the field is 0 or 1
+    /// and the position lies within the longest field of any mode.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        let (_, den) = self.standard.clock_ratio();
+        let longest = [false, true]
+            .map(|pal| cycles_per_line(pal) as u64 * lines_per_field(pal, false, 0) as u64);
+        let longest = longest[0].max(longest[1]);
+        if self.remainder >= den {
+            Err("video clock remainder not below the clock ratio")
+        } else if self.field > 1 {
+            Err("interlace field other than 0 or 1")
+        } else if self.position >= longest {
+            Err("beam position past the longest field")
+        } else {
+            Ok(())
+        }
+    }
+
     pub(crate) fn standard(&self) -> VideoStandard {
         self.standard
     }

@@ -31,6 +31,21 @@ impl TransferRect {
         }
     }
 
+    /// A rectangle the copy commands can produce: x < 1024, y < 512, w in 1..=1024, h in
+    /// 1..=512 (docs/hardware/gpu.md §8).
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        if self.x < 1024
+            && self.y < 512
+            && (1..=1024).contains(&self.w)
+            && (1..=512).contains(&self.h)
+        {
+            Ok(())
+        } else {
+            Err("transfer rectangle outside the masked ranges")
+        }
+    }
+
     /// Pixels in the rectangle.
     pub fn pixels(&self) -> u32 {
         self.w as u32 * self.h as u32
@@ -115,6 +130,18 @@ impl WriteTransfer {
         Self { rect, next: 0 }
     }
 
+    /// An unfinished transfer: a valid rectangle, an even pixel count (two a word) below its
+    /// size.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        self.rect.check()?;
+        if self.next < self.rect.pixels() && self.next.is_multiple_of(2) {
+            Ok(())
+        } else {
+            Err("CPU-to-VRAM transfer position past its rectangle or odd")
+        }
+    }
+
     /// Pixels still to be written.
     pub fn remaining_pixels(&self) -> u32 {
         self.rect.pixels().saturating_sub(self.next)
@@ -149,6 +176,21 @@ impl ReadTransfer {
             rect,
             next: 0,
             active: true,
+        }
+    }
+
+    /// An active transfer has a valid rectangle and an even pixel count below its size; an
+    /// inactive one is never read.
+    #[cfg(feature = "serde")]
+    pub(crate) fn check(&self) -> Result<(), &'static str> {
+        if !self.active {
+            return Ok(());
+        }
+        self.rect.check()?;
+        if self.next < self.rect.pixels() && self.next.is_multiple_of(2) {
+            Ok(())
+        } else {
+            Err("VRAM-to-CPU transfer position past its rectangle or odd")
         }
     }
 

@@ -101,3 +101,421 @@ fn bad_vram_is_an_error() {
     let back: Gpu = serde_json::from_value(value).expect("exact length accepted");
     assert_eq!(back.vram().pixel(5, 0), 7);
 }
+
+// ---------------------------------------------------------------------------------------
+// Versioned save states (`Gpu::save_state` / `SaveState`).
+
+use gpu::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState};
+use proptest::prelude::*;
+
+fn save(g: &Gpu) -> Vec<u8> {
+    postcard::to_allocvec(&g.save_state()).expect("serializes")
+}
+
+fn load(bytes: &[u8]) -> Result<Gpu, postcard::Error> {
+    postcard::from_bytes::<SaveState>(bytes).map(SaveState::into_gpu)
+}
+
+/// A GPU with state in every part: mid CPU-to-VRAM transfer, a VRAM-to-CPU transfer half
+/// read, latched CLUT, queued FIFO words, a raised IRQ not yet reported, interlace.
+fn busy_gpu() -> Gpu {
+    let (words, _) = script();
+    let mut g = Gpu::new();
+    g.gp1(0x0800_0024); // 480i
+    g.gp0_words(&words);
+    g.run(300_000);
+    g.gp0_words(&[0xC000_0000, xy(0, 100), 2 << 16 | 4]);
+    g.gpuread();
+    g.gp0(0x1F00_0000);
+    // A large fill keeps the GPU busy; the next commands wait in the FIFO.
+    g.gp0_words(&[0x0200_00FF, 0, 256 << 16 | 512]);
+    g.gp0_words(&[0x2000_00FF, xy(0, 0), xy(8, 0), xy(0, 8)]);
+    g.gp0_words(&[0xA000_0000, xy(200, 200), 2 << 16 | 2, 0x1234_5678]);
+    g
+}
+
+/// The fields of the `Gpu` value (the order a positional format writes them).
+fn body_json(g: &Gpu) -> serde_json::Value {
+    serde_json::to_value(g).expect("serializes")
+}
+
+#[test]
+fn header_then_body_round_trips() {
+    let g = busy_gpu();
+    assert!(g.pending_input().is_some());
+    assert_eq!(g.gpustat() >> 27 & 1, 1, "VRAM-to-CPU data waiting");
+    let bytes = save(&g);
+    // postcard: magic and version as varints first.
+    let mut header = postcard::to_allocvec(&(SAVE_STATE_MAGIC, SAVE_STATE_VERSION)).unwrap();
+    assert_eq!(&bytes[..header.len()], &header[..]);
+    header.clear();
+    let back = load(&bytes).expect("loads");
+    assert_eq!(save(&back), bytes);
+    assert_eq!(body_json(&back), body_json(&g));
+    assert_eq!(back.gpustat(), g.gpustat());
+    assert_eq!(back.pending_input(), g.pending_input());
+    assert_eq!(back.cycles_until_next_event(), g.cycles_until_next_event());
+    // JSON: header fields by name.
+    let json = serde_json::to_string(&g.save_state()).unwrap();
+    assert!(json.starts_with(&format!(
+        "{{\"magic\":{SAVE_STATE_MAGIC},\"version\":{SAVE_STATE_VERSION},\"gpu\":"
+    )));
+    let back: SaveState = serde_json::from_str(&json).expect("loads");
+    assert_eq!(body_json(&back.into_gpu()), body_json(&g));
+}
+
+#[test]
+fn every_truncation_is_an_error() {
+    let g = busy_gpu();
+    let bytes = save(&g);
+    // The registers lead the state and VRAM comes last: every cut through the registers,
+    // a sample through VRAM, every cut in its last 64 bytes.
+    let vram_start = bytes.len() - postcard::to_allocvec(g.vram()).unwrap().len();
+    let cuts = (0..vram_start + 16)
+        .chain((vram_start..bytes.len()).step_by(9973))
+        .chain(bytes.len() - 64..bytes.len());
+    for cut in cuts {
+        assert!(
+            load(&bytes[..cut]).is_err(),
+            "cut at {cut} of {}",
+            bytes.len()
+        );
+    }
+    let json = serde_json::to_string(&g.save_state()).unwrap();
+    let vram_at = json.find("\"vram\"").unwrap();
+    for cut in (0..vram_at + 40).chain((vram_at..json.len()).step_by(49_999)) {
+        assert!(serde_json::from_str::<SaveState>(&json[..cut]).is_err());
+    }
+}
+
+#[test]
+fn other_version_or_magic_is_refused_before_the_body() {
+    let g = Gpu::new();
+    let mut json: serde_json::Value = serde_json::to_value(g.save_state()).unwrap();
+    json["version"] = (SAVE_STATE_VERSION + 1).into();
+    let err = serde_json::from_value::<SaveState>(json.clone())
+        .unwrap_err()
+        .to_string();
+    let expected = format!(
+        "GPU save state version {}, this build reads version {SAVE_STATE_VERSION}",
+        SAVE_STATE_VERSION + 1
+    );
+    assert!(err.contains(&expected), "{err}");
+    // Positional: a newer version followed by a body this build cannot parse still names
+    // the version.
+    let bytes =
+        postcard::to_allocvec(&(SAVE_STATE_MAGIC, SAVE_STATE_VERSION + 1, [7u8; 9])).unwrap();
+    assert!(matches!(load(&bytes), Err(postcard::Error::SerdeDeCustom)));
+    let bytes = postcard::to_allocvec(&(0x1234_5678u32, SAVE_STATE_VERSION)).unwrap();
+    assert!(matches!(load(&bytes), Err(postcard::Error::SerdeDeCustom)));
+    json["version"] = SAVE_STATE_VERSION.into();
+    json["magic"] = 0x1234_5678.into();
+    let err = serde_json::from_value::<SaveState>(json.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("not a GPU save state (magic 0x12345678)"),
+        "{err}"
+    );
+    // A body without its header is refused.
+    let text = format!("{{\"gpu\":{}}}", serde_json::to_string(&g).unwrap());
+    let err = serde_json::from_str::<SaveState>(&text).unwrap_err();
+    assert!(err.to_string().contains("missing field `magic`"), "{err}");
+}
+
+/// Each field set to a value the hardware cannot reach is refused with its reason.
+#[test]
+fn unreachable_fields_are_refused() {
+    let g = busy_gpu();
+    let base = body_json(&g);
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(&str, Edit); 16] = [
+        ("GP0 packet buffer longer", |v| v["gp0"]["len"] = 13.into()),
+        ("GP0 packet words during a transfer", |v| {
+            v["gp0"]["len"] = 1.into()
+        }),
+        ("transfer position", |v| {
+            v["gp0"]["mode"]["Write"]["next"] = 8.into()
+        }),
+        ("transfer position", |v| {
+            v["gp0"]["mode"]["Write"]["next"] = 1.into()
+        }),
+        ("transfer rectangle", |v| {
+            v["gp0"]["mode"]["Write"]["rect"]["w"] = 0.into()
+        }),
+        ("transfer rectangle", |v| {
+            v["read"]["rect"]["h"] = 513.into()
+        }),
+        ("VRAM-to-CPU transfer position", |v| {
+            v["read"]["next"] = 8.into()
+        }),
+        ("FIFO word count", |v| {
+            v["drawing"]["fifo_words"] = 17.into()
+        }),
+        ("drawing queue index", |v| v["drawing"]["head"] = 16.into()),
+        ("interlace field", |v| v["timing"]["field"] = 2.into()),
+        ("video clock remainder", |v| {
+            v["timing"]["remainder"] = 7.into()
+        }),
+        ("beam position", |v| {
+            v["timing"]["position"] = 2_000_000.into()
+        }),
+        ("texture window", |v| {
+            v["draw"]["window"]["mask_x"] = 32.into()
+        }),
+        ("drawing offset", |v| v["draw"]["offset_x"] = 1024.into()),
+        ("CLUT cache position", |v| {
+            v["clut"]["key"] = serde_json::json!([1009, 0])
+        }),
+        ("display register", |v| {
+            v["display"]["dma_direction"] = 4.into()
+        }),
+    ];
+    assert!(serde_json::from_value::<Gpu>(base.clone()).is_ok());
+    for (reason, edit) in cases {
+        let mut v = base.clone();
+        edit(&mut v);
+        let err = serde_json::from_value::<Gpu>(v).unwrap_err().to_string();
+        assert!(err.contains(reason), "expected {reason:?}, got {err}");
+    }
+    // A complete packet waiting unexecuted.
+    let mut idle = body_json(&Gpu::new());
+    idle["gp0"]["buf"][0] = 0xE100_0000u32.into();
+    idle["gp0"]["len"] = 1.into();
+    let err = serde_json::from_value::<Gpu>(idle).unwrap_err().to_string();
+    assert!(err.contains("complete GP0 packet"), "{err}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Garbage bytes, and a valid state with one byte of its registers replaced, load as an
+    /// error or as a GPU that keeps working; never a panic.
+    #[test]
+    fn garbage_never_panics(
+        junk in prop::collection::vec(any::<u8>(), 0..64),
+        at in any::<prop::sample::Index>(),
+        byte in any::<u8>(),
+    ) {
+        prop_assert!(load(&junk).is_err());
+        let g = busy_gpu();
+        let mut bytes = save(&g);
+        let vram_start = bytes.len() - postcard::to_allocvec(g.vram()).unwrap().len();
+        let i = at.index(vram_start);
+        bytes[i] = byte;
+        if let Ok(mut back) = load(&bytes) {
+            back.gp0_words(&[0x2800_FFFF, xy(0, 0), xy(64, 0), xy(0, 64), xy(64, 64)]);
+            for _ in 0..4 {
+                let wait = back.cycles_until_next_event().min(200_000);
+                back.run(wait.max(1));
+            }
+            back.gpuread();
+            let _ = back.gpustat();
+            prop_assert!(load(&save(&back)).is_ok());
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// Save at a random point of a random command stream, restore, continue both.
+
+/// One thing the CPU does to the GPU.
+#[derive(Clone, Copy, Debug)]
+enum Action {
+    Gp0(u32),
+    Gp1(u32),
+    Run(u32),
+    Read,
+}
+
+/// A position word in a 200x200 area, slightly past its edges.
+fn pos(r: u32) -> u32 {
+    let x = (r & 0xFF) % 220;
+    let y = (r >> 8 & 0xFF) % 220;
+    (y.wrapping_sub(10) & 0x7FF) << 16 | (x.wrapping_sub(10) & 0x7FF)
+}
+
+/// A texcoord word: UV anywhere, CLUT or texpage attribute in the high half.
+fn uv(r: u32, attr: u32) -> u32 {
+    attr << 16 | (r & 0xFFFF)
+}
+
+/// Append the actions of one structured item of class `kind`, from the random words `r`.
+fn item(kind: u8, r: [u32; 8], out: &mut Vec<Action>) {
+    let mut gp0 = |w: u32| out.push(Action::Gp0(w));
+    match kind {
+        // Polygons: flat/Gouraud, 3/4 vertices, textured or not, semi, raw.
+        0..=2 => {
+            let flags = r[0] >> 24 & 0x1F;
+            let gouraud = flags & 0x10 != 0;
+            let quad = flags & 0x08 != 0;
+            let textured = flags & 0x04 != 0;
+            gp0(0x2000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            for v in 0..if quad { 4 } else { 3 } {
+                if gouraud && v > 0 {
+                    gp0(r[v].rotate_left(7) & 0xFF_FFFF);
+                }
+                gp0(pos(r[v + 1]));
+                if textured {
+                    let attr = match v {
+                        0 => r[5] >> 16 & 0x7FFF,
+                        1 => r[6] >> 16 & 0x9FF,
+                        _ => 0,
+                    };
+                    gp0(uv(r[v + 4], attr));
+                }
+            }
+        }
+        // Lines and polylines, terminated.
+        3 => {
+            let flags = r[0] >> 24 & 0x1B;
+            let gouraud = flags & 0x10 != 0;
+            let poly = flags & 0x08 != 0;
+            gp0(0x4000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            gp0(pos(r[1]));
+            let count = if poly { 1 + r[7] % 4 } else { 1 };
+            for v in 0..count as usize {
+                if gouraud {
+                    gp0(r[v + 2] & 0xFF_FFFF);
+                }
+                gp0(pos(r[v + 3]));
+            }
+            if poly {
+                gp0(0x5555_5555);
+            }
+        }
+        // Rectangles of every size class.
+        4 => {
+            let flags = r[0] >> 24 & 0x1F;
+            gp0(0x6000_0000 | flags << 24 | (r[0] & 0xFF_FFFF));
+            gp0(pos(r[1]));
+            if flags & 0x04 != 0 {
+                gp0(uv(r[2], r[3] >> 16 & 0x7FFF));
+            }
+            if flags & 0x18 == 0 {
+                gp0((r[4] & 0x3F) << 16 | (r[4] >> 8 & 0x3F));
+            }
+        }
+        // Fill.
+        5 => {
+            gp0(0x0200_0000 | (r[0] & 0xFF_FFFF));
+            gp0(r[1] & 0x01FF_03FF);
+            gp0((r[2] & 0x3F) << 16 | (r[2] >> 8 & 0x3F));
+        }
+        // VRAM-to-VRAM copy.
+        6 => {
+            gp0(0x8000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(r[2] & 0x01FF_03FF);
+            gp0((r[3] & 0x1F) << 16 | (r[3] >> 8 & 0x1F));
+        }
+        // CPU-to-VRAM with its data.
+        7 => {
+            let (w, h) = (1 + r[3] % 6, 1 + (r[3] >> 8) % 4);
+            gp0(0xA000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(h << 16 | w);
+            for i in 0..(w * h).div_ceil(2) {
+                gp0(r[(i % 4) as usize + 4].rotate_left(i));
+            }
+        }
+        // VRAM-to-CPU, then GPUREAD for all of it and one more.
+        8 => {
+            let (w, h) = (1 + r[3] % 6, 1 + (r[3] >> 8) % 4);
+            gp0(0xC000_0000);
+            gp0(r[1] & 0x01FF_03FF);
+            gp0(h << 16 | w);
+            for _ in 0..(w * h).div_ceil(2) + 1 {
+                out.push(Action::Read);
+            }
+        }
+        // Environment E1-E6.
+        9 => gp0((0xE1 + r[0] % 6) << 24 | (r[1] & 0xFF_FFFF)),
+        // GP1: reset, FIFO reset, IRQ ack, display enable, DMA direction, display area and
+        // ranges, mode, texture-disable permission, info.
+        10 => {
+            let cmd = [
+                0x00, 0x01, 0x02, 0x03, 0x04, 0x05, 0x06, 0x07, 0x08, 0x09, 0x10, 0x10, 0x10,
+            ][r[0] as usize % 13];
+            let arg = match cmd {
+                0x06 => (0x200 + (r[1] & 0x3FF)) | ((0xA00 + (r[1] >> 12 & 0x3FF)) << 12),
+                0x07 => (r[1] & 0x3F) | (0xF0 + (r[1] >> 10 & 0x3F)) << 10,
+                _ => r[1] & 0xFF_FFFF,
+            };
+            out.push(Action::Gp1(cmd << 24 | arg));
+            if cmd == 0x10 {
+                out.push(Action::Read);
+            }
+        }
+        // GP0(1Fh) IRQ request, GP0(01h) CLUT invalidation.
+        11 => gp0(if r[0] & 1 == 0 {
+            0x1F00_0000
+        } else {
+            0x0100_0000
+        }),
+        // Time: up to about a third of a frame.
+        12 | 13 => out.push(Action::Run(r[0] % 200_000)),
+        // Noise: any word to GP0, or a GPUREAD with no transfer (the latch).
+        _ if r[1] & 1 == 0 => out.push(Action::Read),
+        _ => gp0(r[0]),
+    }
+}
+
+/// Perform `a`; returns what the CPU observes (GPUREAD value or the events), with GPUSTAT.
+fn perform(g: &mut Gpu, a: Action) -> (Option<u32>, Option<gpu::Events>, u32) {
+    let (read, events) = match a {
+        Action::Gp0(w) => {
+            g.gp0(w);
+            (None, None)
+        }
+        Action::Gp1(w) => {
+            g.gp1(w);
+            (None, None)
+        }
+        Action::Run(c) => (None, Some(g.run(c))),
+        Action::Read => (Some(g.gpuread()), None),
+    };
+    (read, events, g.gpustat())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// VRAM, GPUSTAT, every GPUREAD value and every `Events` of a GPU restored from a save
+    /// taken at any action stay those of the GPU that was never saved.
+    #[test]
+    fn save_anywhere_continues_identically(
+        items in prop::collection::vec((0u8..16, prop::array::uniform8(any::<u32>())), 1..60),
+        at in any::<prop::sample::Index>(),
+    ) {
+        // A drawing area over the test region, so primitives draw.
+        let mut actions = vec![
+            Action::Gp0(0xE300_0000),
+            Action::Gp0(0xE403_FCFF),
+            Action::Gp1(0x0300_0000),
+        ];
+        for (kind, r) in items {
+            item(kind, r, &mut actions);
+        }
+        let split = at.index(actions.len() + 1);
+        let mut reference = Gpu::new();
+        for &a in &actions[..split] {
+            perform(&mut reference, a);
+        }
+        let mut restored = load(&save(&reference)).expect("a reachable state loads");
+        prop_assert_eq!(restored.gpustat(), reference.gpustat());
+        prop_assert_eq!(restored.cycles_until_next_event(), reference.cycles_until_next_event());
+        for (i, &a) in actions[split..].iter().enumerate() {
+            let expected = perform(&mut reference, a);
+            prop_assert_eq!(perform(&mut restored, a), expected, "action {} {:?}", split + i, a);
+        }
+        // Drain time and events until both are idle.
+        for _ in 0..8 {
+            let wait = reference.cycles_until_next_event().min(100_000);
+            prop_assert_eq!(restored.cycles_until_next_event().min(100_000), wait);
+            prop_assert_eq!(restored.run(wait.max(1)), reference.run(wait.max(1)));
+        }
+        prop_assert!(restored.vram().as_slice() == reference.vram().as_slice(), "VRAM differs");
+        prop_assert_eq!(save(&restored), save(&reference));
+    }
+}
