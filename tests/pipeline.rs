@@ -3,9 +3,10 @@
 //! the default scene's determinism and golden image.
 
 use gpu::Gpu;
+use gpu::TextureDepth;
 use wobble::pipeline::{PipelineOptions, Renderer};
 use wobble::scene::mesh::{Mesh, MeshFace, MeshVertex};
-use wobble::scene::texture::{Depth, Texture};
+use wobble::scene::texture::Texture;
 use wobble::scene::{Camera, MeshAsset, Object, Scene, Screen, TextureAsset};
 
 /// A unit square in the XY plane facing -Z (towards a camera at the origin looking +Z),
@@ -161,7 +162,7 @@ fn four_bit_texture_round_trips_through_vram() {
     });
     let path = std::env::temp_dir().join(format!("wobble-16c-{}.png", std::process::id()));
     img.save(&path).unwrap();
-    let texture = Texture::load_png(&path, Depth::Clut4).unwrap();
+    let texture = Texture::load_png(&path, TextureDepth::Clut4).unwrap();
     let mut s = scene(vec![square()], vec![]);
     s.textures.push(TextureAsset {
         name: "t".into(),
@@ -173,7 +174,7 @@ fn four_bit_texture_round_trips_through_vram() {
         r.gpu().vram().as_slice(),
         320,
         0,
-        wobble::vram_image::PageDepth::Clut4,
+        gpu::TextureDepth::Clut4,
         (0, 480),
         wobble::vram_image::Expand::Shift,
     );
@@ -196,7 +197,7 @@ fn uv_texture() -> Texture {
             ]
         })
         .collect();
-    Texture::from_rgba(64, 64, &pixels, Depth::Direct15).unwrap()
+    Texture::from_rgba(64, 64, &pixels, TextureDepth::Direct15).unwrap()
 }
 
 fn decode(p: u16) -> (i32, i32) {
@@ -458,7 +459,7 @@ mod properties {
                     [c[0] << 3, c[1] << 3, c[2] << 3, 255]
                 })
                 .collect();
-            let depth = if eight { Depth::Clut8 } else { Depth::Clut4 };
+            let depth = if eight { TextureDepth::Clut8 } else { TextureDepth::Clut4 };
             let t = Texture::from_rgba(pixels.len() as u16, 1, &pixels, depth).unwrap();
             prop_assert_eq!(t.clut.len(), if eight { 256 } else { 16 });
             for (p, &index) in pixels.iter().zip(&t.texels) {
@@ -486,7 +487,7 @@ mod properties {
             // Rectangles (x, y, w, h) in halfwords.
             let mut used = vec![(0u32, 0u32, u32::from(width), 2 * u32::from(height))];
             for (i, &(d, w, h)) in textures.iter().enumerate() {
-                let depth = [Depth::Clut4, Depth::Clut8, Depth::Direct15][d as usize];
+                let depth = [TextureDepth::Clut4, TextureDepth::Clut8, TextureDepth::Direct15][d as usize];
                 let t = Texture {
                     width: w,
                     height: h,
@@ -559,7 +560,7 @@ fn polygon_wider_than_the_gpu_draws_is_dropped_then_split() {
     assert_ne!(pixel(r.gpu(), 160, 120), 0);
 }
 
-/// Depth cueing: with fog from Z = 500 to Z = 2000, a quad beyond the far depth gets
+/// TextureDepth cueing: with fog from Z = 500 to Z = 2000, a quad beyond the far depth gets
 /// IR0 = 1.0 (clamped) and the GTE's interpolation gives exactly the far colour (docs/hardware/gte.md §8:
 /// MAC = (FC - in) * IR0 / 4096 + in = FC); a quad nearer than `near` gets IR0 = 0 and keeps
 /// its own colour. Lit (NCDT/NCDS) or unlit (DPCS), the result is the same.
@@ -637,7 +638,7 @@ fn untextured_semi_transparency_uses_its_own_mode() {
 #[test]
 fn textured_semi_transparency_blends() {
     let pixels = vec![[128u8, 0, 0, 255]; 16 * 16];
-    let texture = Texture::from_rgba(16, 16, &pixels, Depth::Clut4).unwrap();
+    let texture = Texture::from_rgba(16, 16, &pixels, TextureDepth::Clut4).unwrap();
     let mut quad = object(0, [0.0, 0.0, 500.0], [0.0; 3], 50.0);
     quad.texture = Some(0);
     quad.blend = Some(2);

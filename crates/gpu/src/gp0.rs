@@ -5,7 +5,7 @@
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{Rows, draw_line_rows, draw_rectangle_rows, draw_triangle_rows};
-use crate::state::{BlendMode, DrawMode, DrawState, TextureDepth};
+use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
@@ -217,23 +217,6 @@ pub(crate) const fn is_terminator(word: u32) -> bool {
     word & 0xF000_F000 == 0x5000_5000
 }
 
-fn blend_mode(bits: u32) -> BlendMode {
-    match bits & 3 {
-        0 => BlendMode::Average,
-        1 => BlendMode::Add,
-        2 => BlendMode::Subtract,
-        _ => BlendMode::AddQuarter,
-    }
-}
-
-fn texture_depth(bits: u32) -> TextureDepth {
-    match bits & 3 {
-        0 => TextureDepth::Clut4,
-        1 => TextureDepth::Clut8,
-        _ => TextureDepth::Direct15,
-    }
-}
-
 impl DrawMode {
     /// GP0(E1h) bits 0-13 (docs/hardware/gpu.md §2).
     pub fn from_e1(word: u32) -> Self {
@@ -248,12 +231,13 @@ impl DrawMode {
 
     /// The bits a polygon's texpage attribute rewrites: 0-8 and 11, never 9-10 (docs/hardware/gpu.md §2).
     pub fn set_texpage(&mut self, attr: u32) {
-        self.page_x = ((attr & 0xF) * 64) as u16;
-        self.page_y = ((attr >> 4 & 1) * 256) as u16;
-        self.blend = blend_mode(attr >> 5);
-        self.depth = texture_depth(attr >> 7);
-        self.depth_reserved = attr >> 7 & 3 == 3;
-        self.texture_disable = attr & (1 << 11) != 0;
+        let t = Texpage::from_bits(attr);
+        self.page_x = t.page_x;
+        self.page_y = t.page_y;
+        self.blend = t.blend;
+        self.depth = t.depth;
+        self.depth_reserved = t.depth_reserved;
+        self.texture_disable = t.texture_disable;
     }
 }
 
@@ -301,12 +285,13 @@ fn textures_enabled(mode: &DrawMode, texture_disable_allowed: bool) -> bool {
 
 /// The texture of a primitive: the page and depth of `mode`, the CLUT attribute given.
 fn texture(mode: &DrawMode, clut_attr: u32, raw: bool) -> Texture {
+    let clut = ClutAttr::from_bits(clut_attr);
     Texture {
         page_x: mode.page_x,
         page_y: mode.page_y,
         depth: mode.depth,
-        clut_x: ((clut_attr & 0x3F) * 16) as u16,
-        clut_y: (clut_attr >> 6 & 0x1FF) as u16,
+        clut_x: clut.x,
+        clut_y: clut.y,
         raw,
     }
 }

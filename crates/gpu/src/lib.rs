@@ -48,7 +48,8 @@ pub use ordering_table::{
 #[cfg(feature = "serde")]
 pub use save::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState, StateError};
 pub use state::{
-    BlendMode, DrawMode, DrawState, DrawingArea, MaskSettings, TextureDepth, TextureWindow,
+    BlendMode, ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, Texpage, TextureDepth,
+    TextureWindow,
 };
 use texture::ClutCache;
 pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};

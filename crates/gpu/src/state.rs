@@ -29,6 +29,144 @@ pub enum BlendMode {
     AddQuarter,
 }
 
+impl TextureDepth {
+    /// Decode the 2-bit depth field (E1h or texpage attribute bits 7-8, given here shifted
+    /// down to bits 0-1; higher bits are ignored): 0 4-bit, 1 8-bit, 2 15-bit, 3 reserved,
+    /// read as 15-bit (docs/hardware/gpu.md §2).
+    pub const fn from_bits(bits: u32) -> TextureDepth {
+        match bits & 3 {
+            0 => TextureDepth::Clut4,
+            1 => TextureDepth::Clut8,
+            _ => TextureDepth::Direct15,
+        }
+    }
+
+    /// The 2-bit depth field, 0-2 (docs/hardware/gpu.md §2).
+    pub const fn bits(self) -> u32 {
+        match self {
+            TextureDepth::Clut4 => 0,
+            TextureDepth::Clut8 => 1,
+            TextureDepth::Direct15 => 2,
+        }
+    }
+
+    /// Entries of the CLUT a texture of this depth indexes: 16, 256, or 0 for direct colour
+    /// (docs/hardware/gpu.md §7).
+    pub const fn clut_len(self) -> usize {
+        match self {
+            TextureDepth::Clut4 => 16,
+            TextureDepth::Clut8 => 256,
+            TextureDepth::Direct15 => 0,
+        }
+    }
+
+    /// Texels stored in one VRAM halfword: 4, 2 or 1 (docs/hardware/gpu.md §7).
+    pub const fn texels_per_halfword(self) -> usize {
+        match self {
+            TextureDepth::Clut4 => 4,
+            TextureDepth::Clut8 => 2,
+            TextureDepth::Direct15 => 1,
+        }
+    }
+}
+
+impl BlendMode {
+    /// Decode the 2-bit semi-transparency field (E1h or texpage attribute bits 5-6, given
+    /// here shifted down to bits 0-1; higher bits are ignored) (docs/hardware/gpu.md §2, §6).
+    pub const fn from_bits(bits: u32) -> BlendMode {
+        match bits & 3 {
+            0 => BlendMode::Average,
+            1 => BlendMode::Add,
+            2 => BlendMode::Subtract,
+            _ => BlendMode::AddQuarter,
+        }
+    }
+
+    /// The 2-bit semi-transparency field, 0-3 (docs/hardware/gpu.md §2).
+    pub const fn bits(self) -> u32 {
+        match self {
+            BlendMode::Average => 0,
+            BlendMode::Add => 1,
+            BlendMode::Subtract => 2,
+            BlendMode::AddQuarter => 3,
+        }
+    }
+}
+
+/// A textured polygon's texture-page attribute, the upper half of vertex 1's texture word:
+/// bits 0-3 page X / 64, 4 page Y / 256, 5-6 semi-transparency, 7-8 depth, 11 texture
+/// disable; the same layout as E1h bits 0-8 and 11 (docs/hardware/gpu.md §2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Texpage {
+    /// Page left edge in halfwords, a multiple of 64 (0-960).
+    pub page_x: u16,
+    /// Page top line, 0 or 256.
+    pub page_y: u16,
+    /// Semi-transparency mode.
+    pub blend: BlendMode,
+    /// Texture depth (3, reserved, decodes as 15-bit; see [`Texpage::depth_reserved`]).
+    pub depth: TextureDepth,
+    /// The depth field was 3.
+    pub depth_reserved: bool,
+    /// Texture disable (bit 11).
+    pub texture_disable: bool,
+}
+
+impl Texpage {
+    /// Decode the attribute's bits 0-8 and 11; the others are ignored (docs/hardware/gpu.md §2).
+    pub const fn from_bits(bits: u32) -> Texpage {
+        Texpage {
+            page_x: ((bits & 0xF) * 64) as u16,
+            page_y: ((bits >> 4 & 1) * 256) as u16,
+            blend: BlendMode::from_bits(bits >> 5),
+            depth: TextureDepth::from_bits(bits >> 7),
+            depth_reserved: bits >> 7 & 3 == 3,
+            texture_disable: bits & (1 << 11) != 0,
+        }
+    }
+
+    /// Encode bits 0-8 and 11 (docs/hardware/gpu.md §2). `page_x` / 64 and `page_y` / 256
+    /// are taken modulo the field widths (16 pages, 2 rows); a reserved depth encodes as 3.
+    pub const fn bits(self) -> u32 {
+        let depth = if self.depth_reserved {
+            3
+        } else {
+            self.depth.bits()
+        };
+        ((self.page_x as u32 / 64) & 0xF)
+            | ((self.page_y as u32 / 256) & 1) << 4
+            | self.blend.bits() << 5
+            | depth << 7
+            | (self.texture_disable as u32) << 11
+    }
+}
+
+/// A CLUT attribute, the upper half of vertex 0's texture word (or a textured rectangle's):
+/// x = (bits & 3Fh) × 16, y = (bits >> 6) & 1FFh (docs/hardware/gpu.md §7).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ClutAttr {
+    /// CLUT left edge in halfwords, a multiple of 16 (0-1008).
+    pub x: u16,
+    /// CLUT line (0-511).
+    pub y: u16,
+}
+
+impl ClutAttr {
+    /// Decode bits 0-14; bit 15 is ignored (docs/hardware/gpu.md §7).
+    pub const fn from_bits(bits: u32) -> ClutAttr {
+        ClutAttr {
+            x: ((bits & 0x3F) * 16) as u16,
+            y: (bits >> 6 & 0x1FF) as u16,
+        }
+    }
+
+    /// Encode (docs/hardware/gpu.md §7): `x` / 16 and `y` are taken modulo the field widths
+    /// (64 columns, 512 lines).
+    pub const fn bits(self) -> u32 {
+        ((self.x as u32 / 16) & 0x3F) | (self.y as u32 & 0x1FF) << 6
+    }
+}
+
 /// GP0(E1h) draw mode (docs/hardware/gpu.md §2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -143,5 +281,92 @@ impl DrawState {
         } else {
             Ok(())
         }
+    }
+}
+
+#[cfg(test)]
+mod field_tests {
+    use super::*;
+
+    /// E1h bits 7-8 (docs/hardware/gpu.md §2): 0 4-bit, 1 8-bit, 2 15-bit, 3 read as 15-bit.
+    #[test]
+    fn texture_depth_field() {
+        let table = [
+            (0, TextureDepth::Clut4),
+            (1, TextureDepth::Clut8),
+            (2, TextureDepth::Direct15),
+            (3, TextureDepth::Direct15),
+        ];
+        for (bits, depth) in table {
+            assert_eq!(TextureDepth::from_bits(bits), depth);
+            assert_eq!(
+                TextureDepth::from_bits(bits | 0xFFFF_FFFC),
+                depth,
+                "high bits ignored"
+            );
+        }
+        for (bits, depth) in &table[..3] {
+            assert_eq!(depth.bits(), *bits);
+        }
+        let sizes = [(TextureDepth::Clut4, 16, 4), (TextureDepth::Clut8, 256, 2)];
+        for (d, clut, per) in sizes {
+            assert_eq!((d.clut_len(), d.texels_per_halfword()), (clut, per));
+        }
+        assert_eq!(TextureDepth::Direct15.clut_len(), 0);
+        assert_eq!(TextureDepth::Direct15.texels_per_halfword(), 1);
+    }
+
+    /// E1h bits 5-6 (docs/hardware/gpu.md §2, §6): 0 average, 1 add, 2 subtract, 3 add a quarter.
+    #[test]
+    fn blend_mode_field() {
+        let table = [
+            (0, BlendMode::Average),
+            (1, BlendMode::Add),
+            (2, BlendMode::Subtract),
+            (3, BlendMode::AddQuarter),
+        ];
+        for (bits, mode) in table {
+            assert_eq!(BlendMode::from_bits(bits), mode);
+            assert_eq!(BlendMode::from_bits(bits | 4), mode);
+            assert_eq!(mode.bits(), bits);
+        }
+    }
+
+    /// Texpage attribute, written out from the fact sheet's layout: page X 3 (192), page Y 1
+    /// (256), blend 2, depth 1, texture disable: 3 | 1<<4 | 2<<5 | 1<<7 | 1<<11 = 8D3h.
+    #[test]
+    fn texpage_layout() {
+        let t = Texpage {
+            page_x: 192,
+            page_y: 256,
+            blend: BlendMode::Subtract,
+            depth: TextureDepth::Clut8,
+            depth_reserved: false,
+            texture_disable: true,
+        };
+        assert_eq!(t.bits(), 0x8D3);
+        assert_eq!(Texpage::from_bits(0x8D3), t);
+        // Bits 9-10 (dither, draw to display) and 12 up are not part of the attribute.
+        assert_eq!(Texpage::from_bits(0x8D3 | 0x600 | 0xF000), t);
+        // Depth 3 reads as 15-bit and is kept as reserved.
+        let r = Texpage::from_bits(3 << 7);
+        assert_eq!((r.depth, r.depth_reserved), (TextureDepth::Direct15, true));
+        assert_eq!(r.bits(), 3 << 7);
+        assert_eq!(Texpage::from_bits(0xF).page_x, 960);
+    }
+
+    /// CLUT attribute (docs/hardware/gpu.md §7): x = (a & 3Fh) * 16, y = (a >> 6) & 1FFh.
+    /// x 1008 (3Fh), y 511 (1FFh): 3Fh | 1FFh << 6 = 7FFFh.
+    #[test]
+    fn clut_layout() {
+        let c = ClutAttr { x: 1008, y: 511 };
+        assert_eq!(c.bits(), 0x7FFF);
+        assert_eq!(ClutAttr::from_bits(0x7FFF), c);
+        assert_eq!(ClutAttr::from_bits(0xFFFF), c, "bit 15 ignored");
+        assert_eq!(
+            ClutAttr::from_bits(5 | 300 << 6),
+            ClutAttr { x: 80, y: 300 }
+        );
+        assert_eq!(ClutAttr { x: 80, y: 300 }.bits(), 5 | 300 << 6);
     }
 }

@@ -529,9 +529,24 @@ fn textured_triangle_4bit_with_transparent_texel() {
     }
 }
 
-/// An independent model of docs/hardware/gpu.md §3 for the property test below, written directly from the
-/// hardware reference: i128 edge maths, the literal two-part walk with incremental steps (bottom-up
-/// with pre-decrement for parts below a core vertex other than v0), and i32 gradients.
+/// A per-pixel model of docs/hardware/gpu.md §3 for the property test below, written from the
+/// fact sheet's rules rather than from the rasterizer's edge walk: every pixel of the
+/// bounding box is tested on its own against the three edge functions, in exact i64
+/// arithmetic, and its attributes are evaluated directly from the plane equation.
+///
+/// Coverage (§3.4, §3.5): pixel (x, y) is sampled at the integer point (x, y). The walk's
+/// 32.32 edges start at x + 1 - 2^-21 and step by at most 2^-32 away from the exact slope per
+/// row, an error below 2^-22 over 511 rows, while a non-integer edge crossing is at least
+/// 1/511 from an integer: so `int(edge)` is exactly `ceil(exact edge)`, and the span rule
+/// `int(left) <= x < int(right)` on rows `y0 <= y < y2` is the top-left rule on the exact
+/// triangle: a point inside is drawn; a point on an edge is drawn when that edge is a left
+/// edge (the inside lies to its right) or a horizontal top edge (the inside lies below it).
+///
+/// Attributes (§3.6): the 8.24 value at pixel (x, y) is `core + d/dx (x - x_core) + d/dy
+/// (y - y_core)` with 32-bit wrap-around; adding d/dx once per pixel along the span gives the
+/// same sum modulo 2^32. The gradient quotients do not depend on the vertex order (numerator
+/// and `den` change sign together under a swap, and truncating division is odd), so the
+/// vertices are used as given; the core vertex follows the §3.3 rule on X alone.
 mod model {
     pub struct V {
         pub x: i64,
@@ -547,22 +562,10 @@ mod model {
         [3, -1, 2, -2],
     ];
 
+    /// Positions wrap to signed 11 bits (§3.5).
     fn sext11(v: i64) -> i64 {
-        ((v & 0x7FF) ^ 0x400) - 0x400
-    }
-
-    fn xfp(x: i64) -> i128 {
-        ((x as i128) << 32) + (1i128 << 32) - (1 << 11)
-    }
-
-    fn xstep(dx: i64, dy: i64) -> i128 {
-        let mut n = (dx as i128) << 32;
-        if n < 0 {
-            n -= dy as i128 - 1;
-        } else if n > 0 {
-            n += dy as i128 - 1;
-        }
-        n / dy as i128 // i128 division truncates like C
+        let v = v.rem_euclid(2048);
+        if v >= 1024 { v - 2048 } else { v }
     }
 
     /// What one pixel receives: colour attributes and the UV pair (8-bit each).
@@ -572,9 +575,15 @@ mod model {
         pub attr: [u32; 5],
     }
 
+    /// Twice the signed area of (p, q, r): positive when r lies clockwise of p -> q on a
+    /// y-down screen.
+    fn edge(p: (i64, i64), q: (i64, i64), r: (i64, i64)) -> i64 {
+        (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0)
+    }
+
     /// Every pixel the triangle draws inside `clip` (x0, y0, x1, y1 inclusive).
     pub fn triangle(input: [V; 3], clip: (i64, i64, i64, i64)) -> Vec<Px> {
-        let mut v: Vec<V> = input
+        let v: Vec<V> = input
             .into_iter()
             .map(|p| V {
                 x: sext11(p.x),
@@ -583,127 +592,77 @@ mod model {
             })
             .collect();
         let mut out = Vec::new();
-        for (i, j) in [(0, 1), (1, 2), (0, 2)] {
-            if (v[i].x - v[j].x).abs() >= 1024 || (v[i].y - v[j].y).abs() >= 512 {
-                return out;
-            }
+        let xs = [v[0].x, v[1].x, v[2].x];
+        let ys = [v[0].y, v[1].y, v[2].y];
+        let (min_x, max_x) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+        let (min_y, max_y) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+        // §3.2: any two vertices 1024 or more apart in X, or 512 in Y.
+        if max_x - min_x >= 1024 || max_y - min_y >= 512 {
+            return out;
         }
-        let mut core = if v[1].x <= v[0].x {
-            if v[2].x <= v[1].x { 2 } else { 1 }
-        } else if v[2].x < v[0].x {
+        let p: [(i64, i64); 3] = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
+        let area = edge(p[0], p[1], p[2]);
+        if area == 0 {
+            return out;
+        }
+        let sign = area.signum();
+        // For each edge a -> b (the third vertex c opposite): whether a point on it is drawn.
+        let edges = [(0, 1, 2), (1, 2, 0), (2, 0, 1)].map(|(i, j, k)| {
+            let (a, b, c) = (p[i], p[j], p[k]);
+            let inclusive = if a.1 == b.1 {
+                c.1 > a.1 // horizontal: a top edge when the triangle lies below it
+            } else {
+                // The inside lies to the right of the edge: the point one pixel to the
+                // right of a is on c's side.
+                edge(a, b, (a.0 + 1, a.1)) * edge(a, b, c) > 0
+            };
+            (a, b, inclusive)
+        });
+        let inside = |q: (i64, i64)| {
+            edges.iter().all(|&(a, b, inclusive)| {
+                let w = edge(a, b, q) * sign;
+                w > 0 || (w == 0 && inclusive)
+            })
+        };
+
+        // §3.3: the core vertex, from X alone.
+        let core = if xs[1] <= xs[0] {
+            if xs[2] <= xs[1] { 2 } else { 1 }
+        } else if xs[2] < xs[0] {
             2
         } else {
             0
         };
-        for (i, j) in [(2usize, 1usize), (1, 0), (2, 1)] {
-            if v[i].y < v[j].y {
-                v.swap(i, j);
-                if core == i {
-                    core = j;
-                } else if core == j {
-                    core = i;
-                }
-            }
-        }
-        if v[0].y == v[2].y {
-            return out;
-        }
+        // §3.6 gradients in 32-bit signed arithmetic, truncating division.
         let (a, b, c) = (&v[0], &v[1], &v[2]);
-        let cross =
-            |p: i64, q: i64, r: i64, s: i64, t: i64, u: i64| (q - p) * (u - t) - (r - q) * (t - s);
-        let den = cross(a.x, b.x, c.x, a.y, b.y, c.y);
-        if den == 0 {
-            return out;
-        }
-        let mut dx = [0u32; 5];
-        let mut dy = [0u32; 5];
-        let mut ig = [0u32; 5];
-        let k = &v[core];
-        for i in 0..5 {
+        let den = (b.x - a.x) * (c.y - b.y) - (c.x - b.x) * (b.y - a.y);
+        let mut at = [(0u32, 0u32, 0u32); 5];
+        for (i, slot) in at.iter_mut().enumerate() {
             let nx = (b.a[i] - a.a[i]) * (c.y - b.y) - (c.a[i] - b.a[i]) * (b.y - a.y);
             let ny = (b.x - a.x) * (c.a[i] - b.a[i]) - (c.x - b.x) * (b.a[i] - a.a[i]);
-            // The i32 products stay in range for 11-bit coordinates and 8-bit attributes.
             let nx = i32::try_from(nx * 4096).unwrap();
             let ny = i32::try_from(ny * 4096).unwrap();
-            let den = den as i32;
-            dx[i] = ((nx / den) as u32) << 12;
-            dy[i] = ((ny / den) as u32) << 12;
-            ig[i] = (((k.a[i] as u32) << 12) + (1 << 11)) << 12;
-            ig[i] = ig[i]
-                .wrapping_sub(dx[i].wrapping_mul(k.x as u32))
-                .wrapping_sub(dy[i].wrapping_mul(k.y as u32));
+            let den = i32::try_from(den).unwrap();
+            let ddx = ((nx / den) as u32) << 12;
+            let ddy = ((ny / den) as u32) << 12;
+            let start = (((v[core].a[i] as u32) << 12) + (1 << 11)) << 12;
+            *slot = (start, ddx, ddy);
         }
-        let base_coord = xfp(a.x);
-        let base_step = xstep(c.x - a.x, c.y - a.y);
-        let (us, right_facing) = if b.y == a.y {
-            (0, b.x > a.x)
-        } else {
-            let s = xstep(b.x - a.x, b.y - a.y);
-            (s, s > base_step)
-        };
-        let ls = if c.y == b.y {
-            0
-        } else {
-            xstep(c.x - b.x, c.y - b.y)
-        };
-        // (start y, end y, bound start, bound step, base start, walk down)
-        let vo = usize::from(core != 0);
-        let vp = if core == 2 { 3 } else { 0 };
-        let parts = [
-            (
-                v[vo].y,
-                v[1 ^ vo].y,
-                xfp(v[vo].x),
-                us,
-                base_coord + (v[vo].y - a.y) as i128 * base_step,
-                vo == 1,
-            ),
-            (
-                v[1 ^ vp].y,
-                v[2 ^ vp].y,
-                xfp(v[1 ^ vp].x),
-                ls,
-                base_coord + (v[1 ^ vp].y - a.y) as i128 * base_step,
-                vp == 3,
-            ),
-        ];
-        let mut span = |y: i64, base: i128, bound: i128| {
-            let (l, r) = if right_facing {
-                (base, bound)
-            } else {
-                (bound, base)
-            };
-            let (l, r) = ((l >> 32) as i64, (r >> 32) as i64);
-            if y < clip.1 || y > clip.3 {
-                return;
-            }
-            for x in l.max(clip.0)..r.min(clip.2 + 1) {
-                let mut attr = [0u32; 5];
-                for i in 0..5 {
-                    let val = ig[i]
-                        .wrapping_add(dx[i].wrapping_mul(x as u32))
-                        .wrapping_add(dy[i].wrapping_mul(y as u32));
-                    attr[i] = val >> 24;
+
+        for y in min_y.max(clip.1)..=max_y.min(clip.3) {
+            for x in min_x.max(clip.0)..=max_x.min(clip.2) {
+                if !inside((x, y)) {
+                    continue;
                 }
+                let attr = at.map(|(start, ddx, ddy)| {
+                    let off_x = (x - v[core].x) as i32 as u32;
+                    let off_y = (y - v[core].y) as i32 as u32;
+                    start
+                        .wrapping_add(ddx.wrapping_mul(off_x))
+                        .wrapping_add(ddy.wrapping_mul(off_y))
+                        >> 24
+                });
                 out.push(Px { x, y, attr });
-            }
-        };
-        for (y0, y1, bound, bstep, base, down) in parts {
-            let (mut y, mut bound, mut base) = (y0, bound, base);
-            if down {
-                while y > y1 {
-                    y -= 1;
-                    bound -= bstep;
-                    base -= base_step;
-                    span(y, base, bound);
-                }
-            } else {
-                while y < y1 {
-                    span(y, base, bound);
-                    y += 1;
-                    bound += bstep;
-                    base += base_step;
-                }
             }
         }
         out

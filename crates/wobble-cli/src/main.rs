@@ -5,9 +5,10 @@
 
 use clap::{Parser, Subcommand, ValueEnum};
 use gpu::{DisplayArea, Gpu, command_stream};
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use wobble::vram_image::{self, Expand, PageDepth};
+use wobble::vram_image::{self, Expand};
 
 mod compare;
 mod gif;
@@ -300,9 +301,9 @@ fn dump(args: &DumpArgs) -> Result<()> {
     if let Some(page) = &args.texpage {
         let (px, py) = parse_pair(page, "--texpage")?;
         let depth = match args.depth.unwrap_or(4) {
-            4 => PageDepth::Clut4,
-            8 => PageDepth::Clut8,
-            15 => PageDepth::Direct15,
+            4 => gpu::TextureDepth::Clut4,
+            8 => gpu::TextureDepth::Clut8,
+            15 => gpu::TextureDepth::Direct15,
             d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
         };
         let clut = parse_pair(args.clut.as_deref().unwrap_or("0,0"), "--clut")?;
@@ -341,8 +342,9 @@ fn trade(args: &TradeArgs) -> Result<()> {
         repeats: args.repeats,
         sweep_step: args.sweep_step as usize,
     };
+    let mut progress = TradeProgressView::new();
     let rows = wobble::trade::write_report(&scene, &name, settings, &args.out, &mut |step| {
-        eprintln!("{step}")
+        progress.show(step)
     })
     .map_err(|e| e.to_string())?;
     for r in &rows {
@@ -353,6 +355,52 @@ fn trade(args: &TradeArgs) -> Result<()> {
     }
     println!("wrote {}", args.out.join("trade.md").display());
     Ok(())
+}
+
+/// How `wobble trade` shows its progress: a bar for the divide sweep on a terminal, a plain
+/// line every 10% of it otherwise, and one line per other step.
+struct TradeProgressView {
+    terminal: bool,
+    bar: Option<indicatif::ProgressBar>,
+    last_tenth: Option<u64>,
+}
+
+impl TradeProgressView {
+    fn new() -> Self {
+        Self {
+            terminal: std::io::stderr().is_terminal(),
+            bar: None,
+            last_tenth: None,
+        }
+    }
+
+    fn show(&mut self, step: wobble::trade::TradeProgress) {
+        let wobble::trade::TradeProgress::Sweep { done, total } = step else {
+            eprintln!("{step}");
+            return;
+        };
+        if self.terminal {
+            let bar = self.bar.get_or_insert_with(|| {
+                let bar = indicatif::ProgressBar::new(total);
+                if let Ok(style) =
+                    indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} sweep rows {eta}")
+                {
+                    bar.set_style(style);
+                }
+                bar
+            });
+            bar.set_position(done);
+            if done >= total {
+                bar.finish_and_clear();
+            }
+        } else {
+            let tenth = done.saturating_mul(10) / total.max(1);
+            if self.last_tenth != Some(tenth) {
+                self.last_tenth = Some(tenth);
+                eprintln!("{step}");
+            }
+        }
+    }
 }
 
 fn main() -> ExitCode {

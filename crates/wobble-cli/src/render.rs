@@ -1,6 +1,7 @@
 //! `wobble render`: the scene pipeline driven from the command line.
 
 use crate::gif::GifWriter;
+use gte::DivideMode;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -9,7 +10,7 @@ use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
 use wobble::reference;
 use wobble::scene::animation::Animation;
 use wobble::scene::default::default_animation;
-use wobble::scene::{Divide, Scene, WIDTHS};
+use wobble::scene::{Scene, WIDTHS};
 
 /// Largest estimated output written without `--large-output`.
 pub const MAX_OUTPUT_BYTES: u64 = 256_000_000;
@@ -89,12 +90,12 @@ pub enum DivideArg {
     F32,
 }
 
-impl From<DivideArg> for Divide {
-    fn from(d: DivideArg) -> Divide {
+impl From<DivideArg> for DivideMode {
+    fn from(d: DivideArg) -> DivideMode {
         match d {
-            DivideArg::Unr => Divide::Unr,
-            DivideArg::Exact => Divide::Exact,
-            DivideArg::F32 => Divide::F32,
+            DivideArg::Unr => DivideMode::Unr,
+            DivideArg::Exact => DivideMode::Exact,
+            DivideArg::F32 => DivideMode::F32,
         }
     }
 }
@@ -145,7 +146,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         tessellation: args.tessellation,
         dither: args.no_dither.then_some(false),
         split_extent: args.split_extent,
-        divide_mode: args.divide.map_or(accuracy.divide, Divide::from).into(),
+        divide_mode: args.divide.map_or(accuracy.divide, DivideMode::from),
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };

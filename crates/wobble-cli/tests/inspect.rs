@@ -77,6 +77,12 @@ fn render_inspect() {
         .output()
         .unwrap();
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("hardware path"));
+    // Without the `accuracy-knobs` feature, `--subpixel` itself is refused first.
+    let why = if cfg!(feature = "accuracy-knobs") {
+        "hardware path"
+    } else {
+        "`accuracy-knobs`"
+    };
+    assert!(String::from_utf8_lossy(&out.stderr).contains(why));
     let _ = std::fs::remove_dir_all(&dir);
 }

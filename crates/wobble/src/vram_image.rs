@@ -32,17 +32,6 @@ impl Expand {
     }
 }
 
-/// Texture depth for the texture-page view.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum PageDepth {
-    /// 4-bit CLUT indices.
-    Clut4,
-    /// 8-bit CLUT indices.
-    Clut8,
-    /// 15-bit direct.
-    Direct15,
-}
-
 /// Errors of the raw VRAM format and image output.
 #[derive(Debug)]
 pub enum ImageError {
@@ -120,7 +109,7 @@ pub fn texture_page_image(
     vram: &[u16],
     page_x: usize,
     page_y: usize,
-    depth: PageDepth,
+    depth: gpu::TextureDepth,
     clut: (usize, usize),
     expand: Expand,
 ) -> RgbaImage {
@@ -128,17 +117,17 @@ pub fn texture_page_image(
         let (u, v) = (u as usize, v as usize);
         let y = page_y + v;
         let texel = match depth {
-            PageDepth::Clut4 => {
+            gpu::TextureDepth::Clut4 => {
                 let w = halfword(vram, page_x + u / 4, y);
                 let i = (w >> ((u % 4) * 4)) & 0xF;
                 halfword(vram, clut.0 + i as usize, clut.1)
             }
-            PageDepth::Clut8 => {
+            gpu::TextureDepth::Clut8 => {
                 let w = halfword(vram, page_x + u / 2, y);
                 let i = (w >> ((u % 2) * 8)) & 0xFF;
                 halfword(vram, clut.0 + i as usize, clut.1)
             }
-            PageDepth::Direct15 => halfword(vram, page_x + u, y),
+            gpu::TextureDepth::Direct15 => halfword(vram, page_x + u, y),
         };
         let [r, g, b] = expand.pixel(texel);
         Rgba([r, g, b, if texel == 0 { 0 } else { 255 }])

@@ -111,7 +111,7 @@ fn accuracy_table() {
         "[accuracy]\ndivide = \"exact\"\nsubpixel = true\nperspective_uv = true\n",
     ))
     .unwrap();
-    assert_eq!(s.accuracy.divide, wobble::scene::Divide::Exact);
+    assert_eq!(s.accuracy.divide, gte::DivideMode::Exact);
     assert!(s.accuracy.subpixel && s.accuracy.perspective_uv);
     let d = Scene::load(&write("acc0.toml", "")).unwrap();
     assert_eq!(

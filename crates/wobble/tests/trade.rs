@@ -5,7 +5,7 @@
 use std::path::PathBuf;
 use wobble::reference;
 use wobble::scene::Scene;
-use wobble::trade::{TradeSettings, measure};
+use wobble::trade::{Knob, Measurement, TradeSettings, measure};
 
 fn scene(name: &str) -> Scene {
     Scene::load(
@@ -83,7 +83,11 @@ fn reference_perspective_case() {
 #[test]
 fn trade_face_on_accuracy_columns() {
     let s = scene("face-on.toml");
-    let (rows, heat) = measure(
+    let Measurement {
+        rows,
+        heat,
+        skipped,
+    } = measure(
         &s,
         TradeSettings {
             frames: 2,
@@ -93,24 +97,56 @@ fn trade_face_on_accuracy_columns() {
     )
     .unwrap();
     assert_eq!(rows.len(), heat.len());
+    assert_eq!(rows.len() + skipped.len(), Knob::ALL.len());
     let hw = &rows[0];
-    assert!(hw.name.starts_with("hardware"));
+    assert_eq!(hw.knob, Knob::Hardware);
     assert_eq!(hw.texel_mean, 0.0);
     assert_eq!(hw.texel_max, 0.0);
     assert_eq!(hw.differing_pixels, 0);
     assert_eq!(hw.ratio, 1.0);
     assert_eq!(hw.drawn, 1.0, "only the front face survives NCLIP");
-    let exact = rows.iter().find(|r| r.name == "divide: exact").unwrap();
-    assert_eq!((exact.differing_pixels, exact.texel_max), (0, 0.0));
     assert_eq!(hw.jitter, 0.0, "nothing moves");
-    // Face-on with whole-pixel corners, the precise path agrees too: sub-pixel positions
-    // equal the snapped ones and perspective weights are all equal.
-    for name in [
-        "sub-pixel vertices (non-hardware)",
-        "perspective-correct UVs (non-hardware)",
-        "sub-pixel + perspective (non-hardware)",
-    ] {
-        let r = rows.iter().find(|r| r.name == name).unwrap();
-        assert_eq!(r.texel_max, 0.0, "{name}");
+    for r in &rows {
+        for (what, v) in [
+            ("ms", r.frame_ms),
+            ("ratio", r.ratio),
+            ("drawn", r.drawn),
+            ("texel mean", r.texel_mean),
+            ("texel max", r.texel_max),
+            ("jitter", r.jitter),
+        ] {
+            assert!(v.is_finite(), "{:?} {what} = {v}", r.knob);
+        }
+    }
+    let non_hardware = [
+        Knob::DivideExact,
+        Knob::DivideF32,
+        Knob::Subpixel,
+        Knob::PerspectiveUv,
+        Knob::SubpixelPerspective,
+    ];
+    if cfg!(feature = "accuracy-knobs") {
+        assert!(skipped.is_empty(), "{skipped:?}");
+        let exact = rows.iter().find(|r| r.knob == Knob::DivideExact).unwrap();
+        assert_eq!((exact.differing_pixels, exact.texel_max), (0, 0.0));
+        // Face-on with whole-pixel corners, the precise path agrees too: sub-pixel positions
+        // equal the snapped ones and perspective weights are all equal.
+        for knob in [
+            Knob::Subpixel,
+            Knob::PerspectiveUv,
+            Knob::SubpixelPerspective,
+        ] {
+            let r = rows.iter().find(|r| r.knob == knob).unwrap();
+            assert_eq!(r.texel_max, 0.0, "{knob:?}");
+        }
+    } else {
+        // Without the knobs, exactly the non-hardware rows are skipped, each naming the
+        // feature that would build it.
+        let knobs: Vec<Knob> = skipped.iter().map(|s| s.knob).collect();
+        assert_eq!(knobs, non_hardware);
+        for s in &skipped {
+            assert!(s.reason.contains("accuracy-knobs"), "{s:?}");
+        }
+        assert!(rows.iter().all(|r| !non_hardware.contains(&r.knob)));
     }
 }

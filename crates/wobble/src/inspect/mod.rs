@@ -18,7 +18,7 @@ use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::vram_image::{self, Expand, PageDepth};
+use crate::vram_image::{self, Expand};
 
 mod base64_lite;
 mod frame;
@@ -168,10 +168,11 @@ impl TextureViews {
         t: &gpu::decode::Texture,
         dir: &Path,
     ) -> Result<Option<String>, String> {
-        let (depth, width, code) = match t.depth {
-            TextureDepth::Clut4 => (PageDepth::Clut4, 64, 4),
-            TextureDepth::Clut8 => (PageDepth::Clut8, 128, 8),
-            TextureDepth::Direct15 => (PageDepth::Direct15, 256, 15),
+        let depth = t.depth;
+        let (width, code) = match depth {
+            TextureDepth::Clut4 => (64, 4),
+            TextureDepth::Clut8 => (128, 8),
+            TextureDepth::Direct15 => (256, 15),
         };
         let (px, py) = (t.page_x as usize, t.page_y as usize);
         let mut gens = [0u64; 5];

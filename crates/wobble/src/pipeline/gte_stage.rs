@@ -254,8 +254,8 @@ impl Renderer {
             }
             let blend = object.blend;
             let texture = prepared.texture.map(|(p, depth)| {
-                let tpage = p.texpage(depth) | (blend.unwrap_or(0) as u32) << 5;
-                (p.clut_attr(), tpage)
+                let blend = gpu::BlendMode::from_bits(u32::from(blend.unwrap_or(0)));
+                (p.clut_attr().bits(), p.texpage(depth, blend).bits())
             });
             for (face_index, face) in prepared.faces.iter().enumerate() {
                 stack.push(*face, 0);

@@ -18,9 +18,9 @@ mod trace;
 pub use object::{angle, object_rotation, object_transform, prepare};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
-use crate::scene::texture::Depth;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{Camera, InvalidScene, Scene};
+use gpu::TextureDepth;
 use gpu::{DisplayArea, Gpu};
 use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
@@ -99,11 +99,58 @@ pub struct PipelineOptions {
 
 impl PipelineOptions {
     /// Whether polygons go through the non-hardware precise rasterizer (never, when built
-    /// without the `accuracy-knobs` feature).
+    /// without the `accuracy-knobs` feature: such options are refused by [`Self::check`]).
     pub fn precise(&self) -> bool {
         cfg!(feature = "accuracy-knobs") && (self.subpixel || self.perspective_uv)
     }
+
+    /// The first knob these options turn that this build does not include: every
+    /// non-hardware knob (a divide other than UNR, sub-pixel vertices, perspective-correct
+    /// texture coordinates) needs the `accuracy-knobs` feature.
+    pub fn check(&self) -> Result<(), UnsupportedKnob> {
+        if cfg!(feature = "accuracy-knobs") {
+            return Ok(());
+        }
+        if self.divide_mode != DivideMode::Unr {
+            Err(UnsupportedKnob::Divide(self.divide_mode))
+        } else if self.subpixel {
+            Err(UnsupportedKnob::Subpixel)
+        } else if self.perspective_uv {
+            Err(UnsupportedKnob::PerspectiveUv)
+        } else {
+            Ok(())
+        }
+    }
 }
+
+/// A non-hardware knob asked of a build without the `accuracy-knobs` feature.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnsupportedKnob {
+    /// A GTE divide other than the hardware's UNR divide.
+    Divide(DivideMode),
+    /// Sub-pixel vertex positions.
+    Subpixel,
+    /// Perspective-correct texture coordinates.
+    PerspectiveUv,
+}
+
+impl fmt::Display for UnsupportedKnob {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let knob = match self {
+            UnsupportedKnob::Divide(DivideMode::Exact) => "the exact GTE divide",
+            UnsupportedKnob::Divide(DivideMode::F32) => "the f32 GTE divide",
+            UnsupportedKnob::Divide(DivideMode::Unr) => "the UNR GTE divide",
+            UnsupportedKnob::Subpixel => "sub-pixel vertices",
+            UnsupportedKnob::PerspectiveUv => "perspective-correct texture coordinates",
+        };
+        write!(
+            f,
+            "{knob} is not built: it needs the `accuracy-knobs` feature of the wobble crate"
+        )
+    }
+}
+
+impl std::error::Error for UnsupportedKnob {}
 
 impl Default for PipelineOptions {
     fn default() -> Self {
@@ -126,7 +173,7 @@ pub enum RenderError {
     /// The scene is inconsistent.
     Scene(InvalidScene),
     /// An accuracy knob this build does not include (built without `accuracy-knobs`).
-    Unsupported(gte::UnsupportedDivideMode),
+    Unsupported(UnsupportedKnob),
     /// The ordering table cannot be built.
     OrderingTable(OtError),
 }
@@ -218,6 +265,7 @@ impl Renderer {
     /// Prepare a scene: tessellate meshes, place and upload textures (GP0 A0h), set up the
     /// GPU's display.
     pub fn new(scene: Scene, options: PipelineOptions) -> Result<Renderer, RenderError> {
+        options.check().map_err(RenderError::Unsupported)?;
         scene.validate().map_err(RenderError::Scene)?;
         let (width, height) = (scene.screen.width, scene.screen.height);
         let mut gpu = Gpu::new();
@@ -243,7 +291,7 @@ impl Renderer {
                 .any(|o| o.texture == Some(index) && o.blend.is_some());
             let mark = |c: u16| if blended && c != 0 { c | 0x8000 } else { c };
             let (texels, clut) = match t.texture.depth {
-                Depth::Direct15 => {
+                TextureDepth::Direct15 => {
                     let texels: Vec<u16> = t.texture.halfwords().into_iter().map(mark).collect();
                     (texels, Vec::new())
                 }
@@ -278,7 +326,7 @@ impl Renderer {
                 .saturating_add(capacity)
                 .min(MAX_POLYGONS);
             let texture = o.texture.and_then(|t| {
-                let depth = scene.textures.get(t)?.texture.depth.bits();
+                let depth = scene.textures.get(t)?.texture.depth;
                 Some((*placements.get(t)?, depth))
             });
             objects.push(PreparedObject {
@@ -307,7 +355,7 @@ impl Renderer {
         let mut geometry = Geometry::new();
         geometry
             .set_divide_mode(options.divide_mode)
-            .map_err(RenderError::Unsupported)?;
+            .map_err(|e| RenderError::Unsupported(UnsupportedKnob::Divide(e.0)))?;
         Ok(Renderer {
             ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
                 .map_err(RenderError::OrderingTable)?,

@@ -11,7 +11,7 @@ use gte::typed::{Matrix, Translation, Vector3};
 pub(super) struct PreparedObject {
     pub(super) faces: Vec<PreparedFace>,
     pub(super) level: u8,
-    pub(super) texture: Option<(Placement, u32)>,
+    pub(super) texture: Option<(Placement, gpu::TextureDepth)>,
 }
 
 /// Degrees to 1/4096 turn.

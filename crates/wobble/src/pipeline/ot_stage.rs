@@ -55,7 +55,11 @@ impl ProjectedFace {
     pub(super) fn blend_e1(&self, dither: bool) -> Option<u32> {
         match (self.texture, self.blend) {
             (None, Some(mode)) => {
-                Some(0xE100_0000 | (dither as u32) << 9 | u32::from(mode & 3) << 5)
+                let blend = gpu::Texpage {
+                    blend: gpu::BlendMode::from_bits(u32::from(mode)),
+                    ..gpu::Texpage::default()
+                };
+                Some(0xE100_0000 | (dither as u32) << 9 | blend.bits())
             }
             _ => None,
         }

@@ -8,8 +8,9 @@
 
 use super::animation::Animation;
 use super::mesh::{Mesh, MeshFace, MeshVertex};
-use super::texture::{Depth, Texture};
+use super::texture::Texture;
 use super::{Camera, Fog, Light, MeshAsset, Object, Scene, Screen, TextureAsset};
+use gpu::TextureDepth;
 
 /// Index of the drifting textured cube in the default scene's objects.
 pub const CUBE: usize = 0;
@@ -148,7 +149,7 @@ fn stone() -> Texture {
             [c[0], c[1], c[2], 255]
         })
         .collect();
-    Texture::from_rgba(32, 16, &pixels, Depth::Clut4)
+    Texture::from_rgba(32, 16, &pixels, TextureDepth::Clut4)
         .unwrap_or_else(|_| Texture::checker(16, 2, [176, 150, 116], [144, 118, 92]))
 }
 

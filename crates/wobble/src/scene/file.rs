@@ -2,11 +2,12 @@
 //! [`Scene`], with file names resolved against the scene file's directory.
 
 use super::mesh::Mesh;
-use super::texture::{Depth, Texture};
+use super::texture::{Texture, depth_from_bits_per_texel};
 use super::{
     Accuracy, Camera, Fog, InvalidScene, Light, MeshAsset, Object, Scene, SceneError, Screen,
     TextureAsset,
 };
+use gpu::TextureDepth;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
@@ -39,12 +40,18 @@ struct TextureDef {
     file: Option<PathBuf>,
     /// Built-in texture: "checker".
     builtin: Option<String>,
-    #[serde(default = "default_depth")]
-    depth: Depth,
+    #[serde(default = "default_depth", deserialize_with = "depth")]
+    depth: TextureDepth,
 }
 
-fn default_depth() -> Depth {
-    Depth::Clut4
+fn default_depth() -> TextureDepth {
+    TextureDepth::Clut4
+}
+
+/// `depth = 4 | 8 | 15` (16 taken as 15).
+fn depth<'de, D: serde::Deserializer<'de>>(d: D) -> Result<TextureDepth, D::Error> {
+    let bits = <u8 as Deserialize>::deserialize(d)?;
+    depth_from_bits_per_texel(bits).map_err(serde::de::Error::custom)
 }
 
 #[derive(Deserialize)]

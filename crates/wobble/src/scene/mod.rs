@@ -171,26 +171,17 @@ pub struct MeshAsset {
     pub mesh: Mesh,
 }
 
-/// The GTE divide a scene asks for (`[accuracy] divide`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Divide {
-    /// The console's UNR divide.
-    #[default]
-    Unr,
-    /// Exact rounded division (non-hardware).
-    Exact,
-    /// f32 division (non-hardware).
-    F32,
-}
-
-impl From<Divide> for gte::DivideMode {
-    fn from(d: Divide) -> gte::DivideMode {
-        match d {
-            Divide::Unr => gte::DivideMode::Unr,
-            Divide::Exact => gte::DivideMode::Exact,
-            Divide::F32 => gte::DivideMode::F32,
-        }
+/// `[accuracy] divide = "unr" | "exact" | "f32"`.
+fn divide_mode<'de, D: serde::Deserializer<'de>>(d: D) -> Result<gte::DivideMode, D::Error> {
+    let name = <String as Deserialize>::deserialize(d)?;
+    match name.as_str() {
+        "unr" => Ok(gte::DivideMode::Unr),
+        "exact" => Ok(gte::DivideMode::Exact),
+        "f32" => Ok(gte::DivideMode::F32),
+        _ => Err(serde::de::Error::unknown_variant(
+            &name,
+            &["unr", "exact", "f32"],
+        )),
     }
 }
 
@@ -201,7 +192,8 @@ impl From<Divide> for gte::DivideMode {
 #[serde(deny_unknown_fields, default)]
 pub struct Accuracy {
     /// GTE divide for RTPS/RTPT.
-    pub divide: Divide,
+    #[serde(deserialize_with = "divide_mode")]
+    pub divide: gte::DivideMode,
     /// Keep 1/16-pixel screen positions instead of whole pixels.
     pub subpixel: bool,
     /// Perspective-correct texture coordinates instead of affine ones.

@@ -2,19 +2,28 @@
 //! in the GPU's 1555 format (docs/hardware/gpu.md §1, §7); the palette choice is in `quantize`.
 
 use super::quantize;
+use gpu::TextureDepth;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-/// Texture colour depth.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
-#[serde(try_from = "u8", into = "u8")]
-pub enum Depth {
-    /// 4-bit indices into a 16-entry CLUT.
-    Clut4,
-    /// 8-bit indices into a 256-entry CLUT.
-    Clut8,
-    /// 15-bit direct colour.
-    Direct15,
+/// A scene file's texture depth in bits per texel (4, 8, or 15; 16 is taken as 15) as the
+/// GPU's texture depth (docs/hardware/gpu.md §7).
+pub fn depth_from_bits_per_texel(bits: u8) -> Result<TextureDepth, DepthError> {
+    match bits {
+        4 => Ok(TextureDepth::Clut4),
+        8 => Ok(TextureDepth::Clut8),
+        15 | 16 => Ok(TextureDepth::Direct15),
+        _ => Err(DepthError(bits)),
+    }
+}
+
+/// Bits per texel of a texture depth: 4, 8 or 15 (docs/hardware/gpu.md §7).
+pub fn bits_per_texel(depth: TextureDepth) -> u8 {
+    match depth {
+        TextureDepth::Clut4 => 4,
+        TextureDepth::Clut8 => 8,
+        TextureDepth::Direct15 => 15,
+    }
 }
 
 /// A texture depth other than 4, 8 or 15 (16 is taken as 15).
@@ -29,57 +38,6 @@ impl fmt::Display for DepthError {
 
 impl std::error::Error for DepthError {}
 
-impl TryFrom<u8> for Depth {
-    type Error = DepthError;
-    fn try_from(v: u8) -> Result<Self, DepthError> {
-        match v {
-            4 => Ok(Depth::Clut4),
-            8 => Ok(Depth::Clut8),
-            15 | 16 => Ok(Depth::Direct15),
-            _ => Err(DepthError(v)),
-        }
-    }
-}
-
-impl From<Depth> for u8 {
-    fn from(d: Depth) -> u8 {
-        match d {
-            Depth::Clut4 => 4,
-            Depth::Clut8 => 8,
-            Depth::Direct15 => 15,
-        }
-    }
-}
-
-impl Depth {
-    /// CLUT entries (0 for direct colour).
-    pub fn clut_len(self) -> usize {
-        match self {
-            Depth::Clut4 => 16,
-            Depth::Clut8 => 256,
-            Depth::Direct15 => 0,
-        }
-    }
-
-    /// Texels per VRAM halfword.
-    pub fn texels_per_halfword(self) -> usize {
-        match self {
-            Depth::Clut4 => 4,
-            Depth::Clut8 => 2,
-            Depth::Direct15 => 1,
-        }
-    }
-
-    /// E1/texpage depth bits.
-    pub fn bits(self) -> u32 {
-        match self {
-            Depth::Clut4 => 0,
-            Depth::Clut8 => 1,
-            Depth::Direct15 => 2,
-        }
-    }
-}
-
 /// A texture ready for VRAM: texels as CLUT indices or 15-bit colours, and its CLUT.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Texture {
@@ -87,8 +45,8 @@ pub struct Texture {
     pub width: u16,
     /// Height in texels (1..=256).
     pub height: u16,
-    /// Depth.
-    pub depth: Depth,
+    /// TextureDepth.
+    pub depth: TextureDepth,
     /// Row-major texels: CLUT indices, or 1555 colours for direct textures.
     pub texels: Vec<u16>,
     /// CLUT entries (16 or 256; empty for direct textures).
@@ -251,7 +209,7 @@ impl Texture {
     pub const MAX_SIDE: u32 = 256;
 
     /// Load a PNG and prepare it at `depth`.
-    pub fn load_png(path: &Path, depth: Depth) -> Result<Texture, TextureError> {
+    pub fn load_png(path: &Path, depth: TextureDepth) -> Result<Texture, TextureError> {
         let file = || path.to_path_buf();
         let io = |source| TextureError::Io {
             file: file(),
@@ -288,7 +246,7 @@ impl Texture {
         width: u16,
         height: u16,
         pixels: &[[u8; 4]],
-        depth: Depth,
+        depth: TextureDepth,
     ) -> Result<Texture, InvalidTexture> {
         let (w, h) = (width as usize, height as usize);
         if w == 0 || h == 0 || w > 256 || h > 256 || pixels.len() != w * h {
@@ -299,7 +257,7 @@ impl Texture {
             });
         }
         let colors: Vec<u16> = pixels.iter().map(|&p| to_1555(p)).collect();
-        if depth == Depth::Direct15 {
+        if depth == TextureDepth::Direct15 {
             return Ok(Texture {
                 width,
                 height,
@@ -338,10 +296,10 @@ impl Texture {
             })
             .collect();
         // Two colours always fit a 16-entry CLUT exactly.
-        Self::from_rgba(size, size, &pixels, Depth::Clut4).unwrap_or_else(|_| Texture {
+        Self::from_rgba(size, size, &pixels, TextureDepth::Clut4).unwrap_or_else(|_| Texture {
             width: 1,
             height: 1,
-            depth: Depth::Direct15,
+            depth: TextureDepth::Direct15,
             texels: vec![0x7FFF],
             clut: Vec::new(),
         })
@@ -366,7 +324,7 @@ impl Texture {
         }
         if self.clut.len() != self.depth.clut_len() {
             return Err(InvalidTexture::ClutLength {
-                bits: u8::from(self.depth),
+                bits: bits_per_texel(self.depth),
                 needed: self.depth.clut_len(),
                 has: self.clut.len(),
             });
@@ -422,7 +380,7 @@ mod tests {
         let t = Texture {
             width: 4,
             height: 1,
-            depth: Depth::Clut4,
+            depth: TextureDepth::Clut4,
             texels: vec![1, 2, 3, 4],
             clut: vec![0; 16],
         };
@@ -434,7 +392,7 @@ mod tests {
         let pixels: Vec<[u8; 4]> = (0..64 * 64)
             .map(|i| [(i % 64 * 4) as u8, (i / 64 * 4) as u8, 128, 255])
             .collect();
-        let t = Texture::from_rgba(64, 64, &pixels, Depth::Clut4).unwrap();
+        let t = Texture::from_rgba(64, 64, &pixels, TextureDepth::Clut4).unwrap();
         assert_eq!(t.clut.len(), 16);
         assert!(t.texels.iter().all(|&i| i < 16));
     }

@@ -9,6 +9,7 @@
 //! when a scene has an 8-bit texture.
 
 use super::texture::Texture;
+use gpu::{BlendMode, ClutAttr, Texpage, TextureDepth};
 use std::fmt;
 
 /// Where a texture and its CLUT went.
@@ -23,15 +24,23 @@ pub struct Placement {
 }
 
 impl Placement {
-    /// The texpage attribute (GP0 polygon vertex 1 UV word, high half) without blend bits.
-    pub fn texpage(&self, depth_bits: u32) -> u32 {
-        (self.page_x as u32 / 64) | ((self.page_y as u32 / 256) << 4) | (depth_bits << 7)
+    /// The texpage attribute (GP0 polygon vertex 1 UV word, high half) of this placement
+    /// (docs/hardware/gpu.md §2).
+    pub fn texpage(&self, depth: TextureDepth, blend: BlendMode) -> Texpage {
+        Texpage {
+            page_x: self.page_x,
+            page_y: self.page_y,
+            blend,
+            depth,
+            ..Texpage::default()
+        }
     }
 
-    /// The CLUT attribute (vertex 0 UV word, high half).
-    pub fn clut_attr(&self) -> u32 {
+    /// The CLUT attribute (vertex 0 UV word, high half; docs/hardware/gpu.md §7); zero
+    /// without a CLUT.
+    pub fn clut_attr(&self) -> ClutAttr {
         self.clut
-            .map_or(0, |(x, y)| (x as u32 / 16) | ((y as u32) << 6))
+            .map_or(ClutAttr::default(), |(x, y)| ClutAttr { x, y })
     }
 }
 
@@ -189,9 +198,8 @@ impl VramAllocator {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::texture::Depth;
 
-    fn tex(depth: Depth, width: u16) -> Texture {
+    fn tex(depth: TextureDepth, width: u16) -> Texture {
         Texture {
             width,
             height: 64,
@@ -204,12 +212,12 @@ mod tests {
     #[test]
     fn pages_right_of_display_and_cluts_below() {
         let mut a = VramAllocator::new(320, 240, 16);
-        let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
+        let p = a.place("a", &tex(TextureDepth::Clut4, 64)).unwrap();
         assert_eq!((p.page_x, p.page_y, p.clut), (320, 0, Some((0, 480))));
-        let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+        let q = a.place("b", &tex(TextureDepth::Clut4, 64)).unwrap();
         assert_eq!((q.page_x, q.clut), (384, Some((16, 480))));
         // 256-wide 15-bit needs four columns.
-        let r = a.place("c", &tex(Depth::Direct15, 256)).unwrap();
+        let r = a.place("c", &tex(TextureDepth::Direct15, 256)).unwrap();
         assert_eq!((r.page_x, r.clut), (448, None));
     }
 
@@ -218,12 +226,12 @@ mod tests {
     #[test]
     fn cluts_beside_full_height_buffers() {
         let mut a = VramAllocator::new(640, 256, 16);
-        let p = a.place("a", &tex(Depth::Clut4, 64)).unwrap();
+        let p = a.place("a", &tex(TextureDepth::Clut4, 64)).unwrap();
         assert_eq!((p.page_x, p.page_y, p.clut), (640, 0, Some((960, 256))));
         let mut pages = vec![(p.page_x, p.page_y)];
         let mut cluts = Vec::new();
         for _ in 0..5 {
-            let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+            let q = a.place("b", &tex(TextureDepth::Clut4, 64)).unwrap();
             pages.push((q.page_x, q.page_y));
             cluts.push(q.clut);
         }
@@ -232,7 +240,7 @@ mod tests {
             [(976, 256), (992, 256), (1008, 256), (960, 257), (976, 257)].map(Some)
         );
         // Columns 10..15 of row 0 and 10..14 of row 1: eleven one-column textures in all.
-        while let Ok(q) = a.place("c", &tex(Depth::Clut4, 64)) {
+        while let Ok(q) = a.place("c", &tex(TextureDepth::Clut4, 64)) {
             pages.push((q.page_x, q.page_y));
         }
         assert_eq!(pages.len(), 11);
@@ -247,12 +255,12 @@ mod tests {
     #[test]
     fn eight_bit_cluts_beside_full_height_buffers() {
         let mut a = VramAllocator::new(640, 256, 256);
-        let p = a.place("a", &tex(Depth::Clut8, 128)).unwrap();
+        let p = a.place("a", &tex(TextureDepth::Clut8, 128)).unwrap();
         assert_eq!((p.page_x, p.page_y, p.clut), (640, 0, Some((768, 256))));
-        let q = a.place("b", &tex(Depth::Clut4, 64)).unwrap();
+        let q = a.place("b", &tex(TextureDepth::Clut4, 64)).unwrap();
         assert_eq!(q.clut, Some((768, 257)));
         let mut pages = vec![(p.page_x, p.page_y, 1), (q.page_x, q.page_y, 1)];
-        while let Ok(r) = a.place("c", &tex(Depth::Clut4, 64)) {
+        while let Ok(r) = a.place("c", &tex(TextureDepth::Clut4, 64)) {
             pages.push((r.page_x, r.page_y, 1));
         }
         // Row 0: columns 10..15 (six); row 1: columns 10..11 (two) left of the strip.
@@ -267,9 +275,11 @@ mod tests {
     #[test]
     fn full_names_the_screen_size() {
         let mut a = VramAllocator::new(640, 256, 256);
-        let e = a.place("wide", &tex(Depth::Direct15, 256)).unwrap();
+        let e = a.place("wide", &tex(TextureDepth::Direct15, 256)).unwrap();
         assert_eq!((e.page_x, e.page_y), (640, 0));
-        let e = a.place("wide2", &tex(Depth::Direct15, 256)).unwrap_err();
+        let e = a
+            .place("wide2", &tex(TextureDepth::Direct15, 256))
+            .unwrap_err();
         assert_eq!(
             e,
             VramAllocError::Texture {
@@ -288,17 +298,17 @@ mod tests {
     fn reports_full() {
         let mut a = VramAllocator::new(320, 240, 16);
         let mut placed = 0;
-        while a.place("t", &tex(Depth::Direct15, 256)).is_ok() {
+        while a.place("t", &tex(TextureDepth::Direct15, 256)).is_ok() {
             placed += 1;
         }
         // 11 free columns per row: two 4-column textures per row, two rows; 3 columns of
         // the second row are left for three 1-column textures.
         assert_eq!(placed, 4);
         for _ in 0..3 {
-            a.place("s", &tex(Depth::Clut4, 8)).unwrap();
+            a.place("s", &tex(TextureDepth::Clut4, 8)).unwrap();
         }
         assert_eq!(
-            a.place("x", &tex(Depth::Clut4, 8)).unwrap_err(),
+            a.place("x", &tex(TextureDepth::Clut4, 8)).unwrap_err(),
             VramAllocError::Texture {
                 name: "x".into(),
                 screen: (320, 240)
