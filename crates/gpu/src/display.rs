@@ -107,6 +107,14 @@ impl DisplayState {
 
 impl Gpu {
     /// One word written to the GP1 port (docs/hardware/gpu.md §9).
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.gp1(0x0300_0000); // GP1(03h): display enable
+    /// assert_eq!(gpu.gpustat() & 1 << 23, 0);
+    /// gpu.gp1(0x0800_0009); // GP1(08h): 320 wide, PAL
+    /// assert_eq!(gpu.gpustat() >> 20 & 1, 1); // GPUSTAT bit 20: PAL
+    /// ```
     pub fn gp1(&mut self, word: u32) {
         match word >> 24 {
             0x00 => self.reset(),
@@ -182,6 +190,13 @@ impl Gpu {
     /// nothing is being received, queued or drawn; 27 while a VRAM-to-CPU transfer has data;
     /// 28 unless a complete command waits in the FIFO, the FIFO is full, or a polygon or line
     /// is being received; 25 is 0, FIFO-not-full, bit 28 or bit 27 for DMA direction 0 to 3.
+    ///
+    /// ```
+    /// // After reset: display disabled (23), ready for commands (26) and DMA blocks (28), and
+    /// // bit 13 set outside interlace (docs/hardware/gpu.md §8): 14802000h.
+    /// let gpu = gpu::Gpu::new();
+    /// assert_eq!(gpu.gpustat() & 0x7FFF_FFFF, 0x1480_2000);
+    /// ```
     pub fn gpustat(&self) -> u32 {
         let m = &self.draw.mode;
         let mut s = (m.page_x as u32 / 64) & 0xF;

@@ -174,6 +174,14 @@ fn gpu_to_cpu_cycles(gpu: u32) -> u32 {
 /// words. Addresses that wrap below 0 (to FFFFFCh and down, past RAM) are not written
 /// (docs/hardware/dma.md §2; psx-spx "D#_MADR"). Returns the CPU cycles taken (one per word, 110h per
 /// 100h). Nothing is written when an address lies outside `ram`.
+///
+/// ```
+/// let mut ram = vec![0u8; 2 << 20];
+/// gpu::dma_clear_ordering_table(&mut ram, 0x100C, 4).unwrap(); // entries 1000h..100Ch
+/// let word = |a: usize| u32::from_le_bytes(ram[a..a + 4].try_into().unwrap());
+/// assert_eq!(word(0x100C), 0x1008); // each entry links to the one below
+/// assert_eq!(word(0x1000), 0x00FF_FFFF); // the last holds the end code
+/// ```
 pub fn dma_clear_ordering_table(ram: &mut [u8], start: u32, count: u32) -> Result<u32, DmaError> {
     let n = match count {
         0 => 0x1_0000,
@@ -253,6 +261,19 @@ impl Gpu {
     /// looping) list pauses with [`ListEnd::Paused`] and can be resumed from `next`. A
     /// header or data word beyond a `ram` shorter than 2 MiB ends the walk with
     /// [`ListEnd::BadAddress`] before that node's words are sent.
+    ///
+    /// ```
+    /// // One node at 2000h holding a 3-word fill, then the end code.
+    /// let mut ram = vec![0u8; 2 << 20];
+    /// for (i, w) in [0x03FF_FFFFu32, 0x0200_00FF, 0, 0x0001_0010].iter().enumerate() {
+    ///     ram[0x2000 + 4 * i..0x2004 + 4 * i].copy_from_slice(&w.to_le_bytes());
+    /// }
+    /// let mut gpu = gpu::Gpu::new();
+    /// let report = gpu.dma_linked_list(&ram, 0x2000);
+    /// assert_eq!((report.nodes, report.words), (1, 3));
+    /// assert_eq!(report.end, gpu::ListEnd::EndMarker);
+    /// assert_eq!(gpu.vram().pixel(0, 0), 0x001F);
+    /// ```
     pub fn dma_linked_list(&mut self, ram: &[u8], start: u32) -> LinkedListReport {
         let mem = ByteRam(ram);
         let mut words = 0u32;

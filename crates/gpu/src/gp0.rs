@@ -418,6 +418,17 @@ pub(crate) fn rectangle_packet(
 
 impl Gpu {
     /// One word written to the GP0 port.
+    ///
+    /// Packets may arrive one word at a time, as CPU writes to 1F801810h do:
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// for w in [0x0200_00FF, 0x0000_0000, 0x0001_0010] {
+    ///     gpu.gp0(w); // GP0(02h): fill 16x1 at (0, 0) with red
+    /// }
+    /// assert_eq!(gpu.vram().pixel(15, 0), 0x001F);
+    /// assert_eq!(gpu.vram().pixel(16, 0), 0);
+    /// ```
     pub fn gp0(&mut self, word: u32) {
         let units = match self.gp0.mode {
             Mode::Write(mut t) => {

@@ -4,6 +4,24 @@
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
 //! [`Gpu::vram`]. Commands may arrive split at any word boundary.
+//!
+//! An emulator's side of the chip, in a few lines (docs/emulator.md has the full wiring):
+//!
+//! ```
+//! use gpu::{Gpu, PixelFormat};
+//! let mut gpu = Gpu::new(); // NTSC console at power-on
+//! gpu.gp1(0x0300_0000); // GP1(03h): display on
+//! gpu.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]); // draw anywhere, offset 0
+//! gpu.gp0_words(&[0x2000_00FF, 0, 64, 64 << 16]); // GP0(20h): flat red triangle
+//! assert_eq!(gpu.vram().pixel(1, 1), 0x001F); // 5-bit red
+//! gpu.gp0(0x1F00_0000); // GP0(1Fh): request IRQ1
+//! let ev = gpu.run(600_000); // a little over one NTSC frame of CPU cycles
+//! assert!(ev.vblank_start && ev.gpu_irq); // IRQ0 and IRQ1 sources
+//! let size = gpu.frame_size(); // 320x240 after reset
+//! let mut rgb = vec![0u8; size.bytes(PixelFormat::Rgb888)];
+//! gpu.display_frame(&mut rgb, PixelFormat::Rgb888).unwrap();
+//! assert_eq!(&rgb[..3], &[255, 0, 0]);
+//! ```
 #![no_std]
 #![forbid(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
@@ -200,6 +218,22 @@ impl Gpu {
     /// Advance time by `cpu_cycles` CPU cycles (33.8688 MHz) and report what happened: dot
     /// clocks and hblanks for the timers, vblank edges for IRQ0 (`docs/gpu.md`, "Video
     /// timing"). Any split of a span of time into calls reports the same totals.
+    ///
+    /// ```
+    /// // One NTSC frame: 263 lines of 3413 GPU cycles, the GPU clock 11/7 of the CPU's
+    /// // (docs/hardware/timing.md): 571,212 CPU cycles hold exactly one vblank start.
+    /// let mut gpu = gpu::Gpu::new();
+    /// let (mut vblanks, mut hblanks) = (0, 0);
+    /// for _ in 0..1000 {
+    ///     let ev = gpu.run(571);
+    ///     vblanks += ev.vblank_start as u32;
+    ///     hblanks += ev.hblanks;
+    /// }
+    /// let ev = gpu.run(212);
+    /// vblanks += ev.vblank_start as u32;
+    /// hblanks += ev.hblanks;
+    /// assert_eq!((vblanks, hblanks), (1, 263));
+    /// ```
     pub fn run(&mut self, cpu_cycles: u32) -> Events {
         let video = self.timing.convert(cpu_cycles);
         let mut events = self.timing.advance(video, &self.display);
@@ -213,6 +247,13 @@ impl Gpu {
     /// CPU cycles until [`Gpu::run`] would report an event: an hblank or vblank edge, the GPU
     /// IRQ or the end of drawing (rounded up, so running exactly this many reaches it); 0 when
     /// one awaits delivery; `u32::MAX` when none comes. Dot counts are not events.
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// let n = gpu.cycles_until_next_event();
+    /// assert!(n > 0 && !gpu.run(n - 1).any()); // nothing happens before it
+    /// assert!(gpu.run(1).any());
+    /// ```
     pub fn cycles_until_next_event(&self) -> u32 {
         let video = self.timing.cycles_until_next_event(&self.display);
         match self.drawing_cycles_until_event() {
@@ -230,6 +271,15 @@ impl Gpu {
 
     /// GPUREAD: the next two pixels of a VRAM-to-CPU transfer (GP0 C0h), or the latched
     /// value of the last GP1(10h) info read.
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.vram_mut().set_pixel(10, 20, 0x1234);
+    /// gpu.vram_mut().set_pixel(11, 20, 0x5678);
+    /// gpu.gp0_words(&[0xC000_0000, 20 << 16 | 10, 1 << 16 | 2]); // GP0(C0h): 2x1 at (10, 20)
+    /// assert_ne!(gpu.gpustat() & 1 << 27, 0); // ready to send VRAM to the CPU
+    /// assert_eq!(gpu.gpuread(), 0x5678_1234); // first pixel in the low half
+    /// ```
     pub fn gpuread(&mut self) -> u32 {
         if self.read.active() {
             let word = self.read.next_word(&self.vram);
