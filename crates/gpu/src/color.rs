@@ -81,10 +81,59 @@ pub fn modulate_channel(t5: u16, c8: i32, offset: i32) -> u16 {
     dither_channel((t5 as i32 * c8) >> 4, offset)
 }
 
-/// Blend new pixel `f` over VRAM pixel `b` per 5-bit channel (docs/hardware/gpu.md §6). Bit 15 of the
-/// result is zero.
+/// The three 5-bit channels of a 15-bit colour spread to bits 0-4, 6-10 and 12-16, so that a
+/// per-channel sum or difference carries into the free bit above its channel (5, 11, 17)
+/// instead of into the next channel.
+#[inline(always)]
+const fn spread(c: u16) -> u32 {
+    let c = c as u32;
+    (c & 0x1F) | ((c & 0x3E0) << 1) | ((c & 0x7C00) << 2)
+}
+
+/// The inverse of [`spread`] on the channel bits.
+#[inline(always)]
+const fn compact(s: u32) -> u16 {
+    ((s & 0x1F) | ((s >> 1) & 0x3E0) | ((s >> 2) & 0x7C00)) as u16
+}
+
+/// The carry bit above each spread channel.
+const CARRIES: u32 = 1 << 5 | 1 << 11 | 1 << 17;
+
+/// 31 in every spread channel whose carry bit is set in `carries`, 0 elsewhere.
+#[inline(always)]
+const fn fill_channels(carries: u32) -> u32 {
+    carries - (carries >> 5)
+}
+
+/// Per-channel `min(b + f, 31)` on spread channels (each input channel at most 31).
+#[inline(always)]
+const fn add_saturate(b: u32, f: u32) -> u16 {
+    let sum = b + f;
+    compact(sum | fill_channels(sum & CARRIES))
+}
+
+/// Blend new pixel `f` over VRAM pixel `b` per 5-bit channel (docs/hardware/gpu.md §6):
+/// B/2+F/2 (floored), B+F, B-F and B+F/4, each clamped to 0..31. Bit 15 of the result is
+/// zero. All three channels are computed at once, branch-free, in one 32-bit word.
 #[inline(always)]
 pub fn blend(mode: BlendMode, b: u16, f: u16) -> u16 {
+    let (b, f) = (b & 0x7FFF, f & 0x7FFF);
+    match mode {
+        // (b + f) >> 1 = (b >> 1) + (f >> 1) + (b & f & 1) per channel.
+        BlendMode::Average => ((b & 0x7BDE) >> 1) + ((f & 0x7BDE) >> 1) + (b & f & 0x0421),
+        BlendMode::Add => add_saturate(spread(b), spread(f)),
+        BlendMode::Subtract => {
+            // 32 + b - f per channel: the carry bit survives exactly when b >= f.
+            let diff = (spread(b) | CARRIES) - spread(f);
+            compact(diff & fill_channels(diff & CARRIES))
+        }
+        BlendMode::AddQuarter => add_saturate(spread(b), (spread(f) >> 2) & 0x71C7),
+    }
+}
+
+/// [`blend`] one channel at a time: the reference the packed form is tested against.
+#[cfg(test)]
+pub fn blend_per_channel(mode: BlendMode, b: u16, f: u16) -> u16 {
     let mut out = 0;
     let mut shift = 0;
     while shift < 15 {
@@ -115,6 +164,51 @@ mod tests {
         assert_eq!(blend(BlendMode::Add, b, f), pack555(31, 14, 31));
         assert_eq!(blend(BlendMode::Subtract, b, f), pack555(15, 6, 0));
         assert_eq!(blend(BlendMode::AddQuarter, b, f), pack555(31, 11, 7));
+    }
+
+    const MODES: [BlendMode; 4] = [
+        BlendMode::Average,
+        BlendMode::Add,
+        BlendMode::Subtract,
+        BlendMode::AddQuarter,
+    ];
+
+    /// Every channel pair, in all three channels at once and in each channel alone with the
+    /// other channels at their extremes, bit 15 set or not on either side.
+    #[test]
+    fn packed_blend_equals_per_channel_blend_on_every_channel_pair() {
+        for mode in MODES {
+            for bc in 0..32u16 {
+                for fc in 0..32u16 {
+                    let same = |c: u16| pack555(c, c, c);
+                    let check = |b: u16, f: u16| {
+                        assert_eq!(
+                            blend(mode, b, f),
+                            blend_per_channel(mode, b, f),
+                            "{mode:?} {b:04x} {f:04x}"
+                        );
+                    };
+                    check(same(bc), same(fc));
+                    check(same(bc) | 0x8000, same(fc) | 0x8000);
+                    for shift in [0, 5, 10] {
+                        for other in [0u16, 31] {
+                            let rest = same(other) & !(0x1F << shift);
+                            check(rest | bc << shift, rest | fc << shift);
+                            check(rest | bc << shift, (0x7FFF & !rest) | fc << shift);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn packed_blend_equals_per_channel_blend(b: u16, f: u16) {
+            for mode in MODES {
+                proptest::prop_assert_eq!(blend(mode, b, f), blend_per_channel(mode, b, f));
+            }
+        }
     }
 
     #[test]

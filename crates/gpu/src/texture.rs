@@ -137,6 +137,17 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// The 4-bit texel index (a CLUT entry number) at (u, v), after the texture window; X
+    /// wraps at 1024 (docs/hardware/gpu.md §7).
+    #[inline(always)]
+    pub fn index4(&self, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> usize {
+        let u = ((u & self.u_and) | self.u_or) as usize;
+        let v = ((v & self.v_and) | self.v_or) as usize;
+        let row = ((self.page_y + v) & 511) * VRAM_WIDTH;
+        let word = vram[row + ((self.page_x + (u >> 2)) & 1023)];
+        ((word >> ((u & 3) * 4)) & 0xF) as usize
+    }
+
     /// The texel at (u, v) for a page of kind `kind` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
     /// after the texture window; X wraps at 1024 (docs/hardware/gpu.md §7).
     #[inline(always)]

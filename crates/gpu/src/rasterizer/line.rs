@@ -92,6 +92,7 @@ pub(super) fn draw<
                 0,
                 shade,
                 &env,
+                false,
             );
         }
         x = x.wrapping_add(x_step);

@@ -10,7 +10,7 @@ pub(crate) mod precise;
 mod rectangle;
 mod triangle;
 
-use crate::color::{ShadeTable, blend, pack555};
+use crate::color::{PLAIN_TABLE, ShadeTable, blend, pack555};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::state::{BlendMode, DrawState, DrawingArea, TextureDepth};
 use crate::texture::{ClutCache, Sampler};
@@ -52,6 +52,13 @@ fn texture_kind(texture: Option<&Texture>) -> u8 {
     }
 }
 
+/// Whether a primitive's span routine shades texels through [`PixelEnv::lut`]: a 4-bit
+/// texture under one colour and no dithering. The span routines make the same decision from
+/// their const parameters (`TEX == 1 && !GOURAUD && !DITHER`).
+fn uses_lut(texture: Option<&Texture>, gouraud: bool, dither: bool) -> bool {
+    texture_kind(texture) == 1 && !gouraud && !dither
+}
+
 /// Expand runtime booleans into const generic arguments: `dispatch!(f(args); [prefix]; a, b)`
 /// calls `f::<prefix.., a?, b?>(args)` with each flag as a literal.
 macro_rules! dispatch {
@@ -76,12 +83,44 @@ pub(crate) struct PixelEnv<'a> {
     pub blend: BlendMode,
     /// Texture fetch state (unused by untextured primitives).
     pub sampler: Sampler<'a>,
+    /// A 4-bit texture's 16 CLUT entries already shaded with the primitive's one colour,
+    /// for primitives whose colour is the same at every pixel (flat, undithered, or raw):
+    /// 0 for a transparent entry (CLUT value 0000h), else `10000h | shaded | texel bit 15`.
+    /// Filled only when a span routine reads it (see [`shaded_clut4`]).
+    pub lut: [u32; 16],
+}
+
+/// The 16 CLUT entries of a 4-bit texture shaded once for a primitive whose colour `rgb` and
+/// shade table are the same at every pixel (docs/hardware/gpu.md §6): what [`shade_pixel`]
+/// computes per texel, per entry instead. Raw textures keep the entry as it is.
+fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
+    let mut lut = [0u32; 16];
+    for (entry, &t) in lut.iter_mut().zip(clut.iter()) {
+        if t == 0 {
+            continue;
+        }
+        let shaded = if raw {
+            t & 0x7FFF
+        } else {
+            let c5 = |i: i32| PLAIN_TABLE[(i & 511) as usize] as u16;
+            let t = t as i32;
+            pack555(
+                c5(((t & 0x1F) * rgb[0]) >> 4),
+                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
+                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
+            )
+        };
+        *entry = 0x1_0000 | u32::from(shaded | (t & 0x8000));
+    }
+    lut
 }
 
 /// Shade and write one pixel (docs/hardware/gpu.md §6): texel fetch and transparency, modulation or raw
 /// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
 /// `rgb` holds 8-bit channels; `shade` is the dither cell's table for this pixel (or the
-/// undithered one).
+/// undithered one). With `lut` (4-bit textures only; a constant in every span routine, so
+/// the branch on it is folded away) the texel's shaded colour comes from `env.lut` and `rgb`
+/// and `shade` are not read.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shade_pixel<
@@ -97,6 +136,7 @@ pub(crate) fn shade_pixel<
     v: u8,
     shade: &ShadeTable,
     env: &PixelEnv,
+    lut: bool,
 ) {
     let dst = vram[index & (VRAM_LEN - 1)];
     if MASK_CHECK && dst & 0x8000 != 0 {
@@ -106,6 +146,13 @@ pub(crate) fn shade_pixel<
     let (color, semi, bit15) = if TEX == TEX_NONE {
         let c = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
         (c, BLEND, 0)
+    } else if lut {
+        let e = env.lut[env.sampler.index4(vram, u, v)];
+        if e == 0 {
+            return;
+        }
+        let t = e as u16;
+        (t & 0x7FFF, BLEND && t & 0x8000 != 0, t & 0x8000)
     } else {
         let t = env.sampler.fetch(TEX, vram, u, v);
         if t == 0 {
@@ -124,8 +171,11 @@ pub(crate) fn shade_pixel<
         };
         (c, BLEND && t & 0x8000 != 0, t & 0x8000)
     };
-    let color = if semi {
-        blend(env.blend, dst, color)
+    // Textured pixels blend per texel (bit 15), which varies pixel to pixel: both results are
+    // computed and one is selected, with no branch to mispredict.
+    let color = if BLEND {
+        let keep = 0u16.wrapping_sub(u16::from(!semi));
+        (blend(env.blend, dst, color) & !keep) | (color & keep)
     } else {
         color
     };
@@ -439,6 +489,7 @@ fn env<'a>(
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: blend.unwrap_or_default(),
         sampler: Sampler::new(clut, page_x, page_y, state.window),
+        lut: [0; 16],
     }
 }
 
@@ -452,8 +503,12 @@ pub(crate) fn draw_triangle_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
-    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
     let raw = tri.texture.is_some_and(|t| t.raw);
+    if uses_lut(tri.texture.as_ref(), tri.gouraud, tri.dither) {
+        let rgb = tri.vertices[0].color.map(i32::from);
+        env.lut = shaded_clut4(env.sampler.clut, rgb, raw);
+    }
     let (g, b, d, m) = (
         tri.gouraud,
         tri.blend.is_some(),
@@ -508,6 +563,7 @@ pub(crate) fn draw_line_rows(
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
         sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
+        lut: [0; 16],
     };
     let (g, b, d, m) = (
         line.gouraud,
@@ -530,8 +586,11 @@ pub(crate) fn draw_rectangle_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
-    let env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
+    let mut env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
     let raw = rect.texture.is_some_and(|t| t.raw);
+    if uses_lut(rect.texture.as_ref(), false, false) {
+        env.lut = shaded_clut4(env.sampler.clut, rect.origin.color.map(i32::from), raw);
+    }
     let (b, m) = (rect.blend.is_some(), state.mask.check);
     use rectangle::draw;
     match texture_kind(rect.texture.as_ref()) {

@@ -157,6 +157,7 @@ pub(super) fn draw<
                 tv,
                 shade,
                 env,
+                false,
             );
         }
     }

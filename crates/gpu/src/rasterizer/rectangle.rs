@@ -68,6 +68,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
                 v,
                 &PLAIN_TABLE,
                 &env,
+                TEX == 1,
             );
             u = u.wrapping_add(du);
         }

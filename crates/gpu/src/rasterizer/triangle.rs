@@ -177,6 +177,7 @@ pub(super) fn draw<
                     &PLAIN_TABLE
                 },
                 &env,
+                TEX == 1 && !GOURAUD && !DITHER,
             );
             for i in 0..5 {
                 if used(i) {
