@@ -191,21 +191,21 @@ pub(crate) fn step_away_from_zero(delta: i32, steps: i32) -> i64 {
     n / steps as i64
 }
 
-/// Fill `[x_start, x_end)` of the row starting at `row` with one flat colour: the whole
-/// pixel pipeline of an opaque, unmasked, undithered flat primitive.
-pub(crate) fn fill_flat_span(
-    vram: &mut [u16; VRAM_LEN],
-    row: usize,
-    x_start: i32,
-    x_end: i32,
-    flat: [i32; 3],
-    mask_or: u16,
-) {
-    let c = pack555(
+/// The pixel an opaque, unmasked, undithered flat primitive writes: its colour to 5 bits
+/// per channel (docs/hardware/gpu.md §6), with the mask bit E6h sets.
+#[inline(always)]
+pub(crate) fn flat_color(flat: [i32; 3], mask_or: u16) -> u16 {
+    pack555(
         (flat[0] >> 3) as u16,
         (flat[1] >> 3) as u16,
         (flat[2] >> 3) as u16,
-    ) | mask_or;
+    ) | mask_or
+}
+
+/// Write `c` to `[x_start, x_end)` of the VRAM line starting at `row`: the whole pixel
+/// pipeline of an opaque, unmasked, undithered flat primitive.
+#[inline(always)]
+pub(crate) fn fill_span(vram: &mut [u16; VRAM_LEN], row: usize, x_start: i32, x_end: i32, c: u16) {
     if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
         s.fill(c);
     }
@@ -225,6 +225,15 @@ pub(crate) enum Rows {
 }
 
 impl Rows {
+    /// The first drawn row at or after `y`.
+    #[inline(always)]
+    pub(crate) fn first(self, y: i32) -> i32 {
+        match self {
+            Rows::All => y,
+            Rows::SkipParity(p) => Self::first_from(p, y),
+        }
+    }
+
     /// The first row at or after `y` that is drawn.
     #[inline(always)]
     fn first_from(parity: u8, y: i32) -> i32 {
@@ -267,29 +276,6 @@ impl Rows {
                 while y < hi {
                     f(y);
                     y += 2;
-                }
-            }
-        }
-    }
-
-    /// Call `f` for each drawn row of `lo..hi`, descending.
-    #[inline(always)]
-    pub(crate) fn each_rev(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
-        match self {
-            Rows::All => {
-                for y in (lo..hi).rev() {
-                    f(y);
-                }
-            }
-            Rows::SkipParity(p) => {
-                // The last drawn row below `hi`.
-                let mut y = hi - 1;
-                if (y & 1) as u8 == p & 1 {
-                    y -= 1;
-                }
-                while y >= lo {
-                    f(y);
-                    y -= 2;
                 }
             }
         }

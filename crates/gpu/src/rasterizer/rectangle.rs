@@ -54,7 +54,13 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     filter.each(y_start, y_end, |y| {
         let row = ((y & 511) as usize) * VRAM_WIDTH;
         if TEX == TEX_NONE && !BLEND && !MASK_CHECK {
-            super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
+            super::fill_span(
+                vram,
+                row,
+                x_start,
+                x_end,
+                super::flat_color(flat, env.mask_or),
+            );
             return;
         }
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));

@@ -15,6 +15,23 @@ struct Vtx {
     attr: [i32; 5],
 }
 
+/// A triangle edge: its 32.32 X at row `y` is `edge_start(x) + (row - y) * step`
+/// (docs/hardware/gpu.md §3.4).
+#[derive(Clone, Copy)]
+struct Edge {
+    x: i32,
+    y: i32,
+    step: i64,
+}
+
+impl Edge {
+    /// The edge's X at `row`, 32.32 fixed point.
+    #[inline(always)]
+    fn at(self, row: i32) -> i64 {
+        edge_start(self.x) + (row - self.y) as i64 * self.step
+    }
+}
+
 /// An edge's start: x + 1 minus a small epsilon, in 32.32 fixed point (docs/hardware/gpu.md §3.4).
 fn edge_start(x: i32) -> i64 {
     ((x as i64) << 32) + (1i64 << 32) - (1 << 11)
@@ -118,105 +135,113 @@ pub(super) fn draw<
         edge_step(c.x - b.x, c.y - b.y)
     };
     let area = state.area;
-    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32);
+    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
     let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
+    // Per-triangle copies, so the row and pixel loops keep them in registers.
+    let env = *env;
+    let flat_color = super::flat_color(flat, env.mask_or);
+    let step = grads.map(|g| g.0);
 
-    let mut span = |y: i32, base: i64, bound: i64| {
-        if y < clip_top || y > clip_bottom {
-            return;
-        }
+    // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
+    // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
+    // core vertex from below is walked bottom-up on the console: its bound edge starts at the
+    // lower vertex and each row pre-decrements. Each edge is thus linear in y from an anchor
+    // row: core a, the bound edges are anchored at a (upper part) and b (lower part); core b,
+    // both at b; core c, at b (upper part) and c (lower part). Rows are independent, so they
+    // are drawn top-down here with the edges stepped by addition from the first drawn row.
+    let base = Edge {
+        x: a.x,
+        y: a.y,
+        step: base_step,
+    };
+    let (upper_anchor, lower_anchor) = match core {
+        0 => (a, b),
+        1 => (b, b),
+        _ => (b, c),
+    };
+    let parts = [
+        (a.y, b.y, upper_anchor, upper_step),
+        (b.y, c.y, lower_anchor, lower_step),
+    ];
+    let stride = match rows {
+        super::Rows::All => 1,
+        super::Rows::SkipParity(_) => 2,
+    };
+    for (top, bottom, anchor, bound_step) in parts {
+        let bound = Edge {
+            x: anchor.x,
+            y: anchor.y,
+            step: bound_step,
+        };
         let (left, right) = if right_facing {
             (base, bound)
         } else {
             (bound, base)
         };
-        let x_start = ((left >> 32) as i32).max(clip_left);
-        let x_end = ((right >> 32) as i32).min(clip_right);
-        if x_start >= x_end {
-            return;
+        let first = rows.first(top.max(clip_top));
+        let last = bottom.min(clip_bottom);
+        if first >= last {
+            continue;
         }
-        drawn.span(x_start, x_end);
-        let row = ((y & 511) as usize) * VRAM_WIDTH;
-        if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
-            super::fill_flat_span(vram, row, x_start, x_end, flat, env.mask_or);
-            return;
-        }
-        let dx = x_start.wrapping_sub(cv.x) as u32;
-        let dy = y.wrapping_sub(cv.y) as u32;
-        let mut acc = [0u32; 5];
-        for i in 0..5 {
-            if used(i) {
-                acc[i] = origin[i]
-                    .wrapping_add(grads[i].0.wrapping_mul(dx))
-                    .wrapping_add(grads[i].1.wrapping_mul(dy));
-            }
-        }
-        // Per-span copies, so the pixel loop keeps them in registers.
-        let step = grads.map(|g| g.0);
-        let env = *env;
-        let dither_row = &DITHER_TABLES[(y & 3) as usize];
-        for x in x_start..x_end {
-            let rgb = if GOURAUD {
-                [
-                    (acc[0] >> 24) as i32,
-                    (acc[1] >> 24) as i32,
-                    (acc[2] >> 24) as i32,
-                ]
-            } else {
-                flat
-            };
-            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
-                vram,
-                row + x as usize,
-                rgb,
-                (acc[3] >> 24) as u8,
-                (acc[4] >> 24) as u8,
-                if DITHER {
-                    &dither_row[(x & 3) as usize]
+        let (mut l, mut r) = (left.at(first), right.at(first));
+        let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
+        let mut y = first;
+        while y < last {
+            let x_start = ((l >> 32) as i32).max(clip_left);
+            let x_end = ((r >> 32) as i32).min(clip_right);
+            l += dl;
+            r += dr;
+            if x_start < x_end {
+                drawn.span(x_start, x_end);
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
+                    super::fill_span(vram, row, x_start, x_end, flat_color);
                 } else {
-                    &PLAIN_TABLE
-                },
-                &env,
-                TEX == 1 && !GOURAUD && !DITHER,
-            );
-            for i in 0..5 {
-                if used(i) {
-                    acc[i] = acc[i].wrapping_add(step[i]);
+                    let dx = x_start.wrapping_sub(cv.x) as u32;
+                    let dy = y.wrapping_sub(cv.y) as u32;
+                    let mut acc = [0u32; 5];
+                    for i in 0..5 {
+                        if used(i) {
+                            acc[i] = origin[i]
+                                .wrapping_add(grads[i].0.wrapping_mul(dx))
+                                .wrapping_add(grads[i].1.wrapping_mul(dy));
+                        }
+                    }
+                    let dither_row = &DITHER_TABLES[(y & 3) as usize];
+                    for x in x_start..x_end {
+                        let rgb = if GOURAUD {
+                            [
+                                (acc[0] >> 24) as i32,
+                                (acc[1] >> 24) as i32,
+                                (acc[2] >> 24) as i32,
+                            ]
+                        } else {
+                            flat
+                        };
+                        shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+                            vram,
+                            row + x as usize,
+                            rgb,
+                            (acc[3] >> 24) as u8,
+                            (acc[4] >> 24) as u8,
+                            if DITHER {
+                                &dither_row[(x & 3) as usize]
+                            } else {
+                                &PLAIN_TABLE
+                            },
+                            &env,
+                            TEX == 1 && !GOURAUD && !DITHER,
+                        );
+                        for i in 0..5 {
+                            if used(i) {
+                                acc[i] = acc[i].wrapping_add(step[i]);
+                            }
+                        }
+                    }
                 }
             }
+            y += stride;
         }
-    };
-
-    // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows [b.y, c.y)
-    // bounded by b->c. The base edge a->c is always measured from a. A part touching the core
-    // vertex from below is walked bottom-up: its bound edge starts at the lower vertex and
-    // each row pre-decrements. The core vertex fixes the directions: core a, both parts
-    // top-down (from a, then from b); core b, the upper part bottom-up from b and the lower
-    // part top-down from b; core c, both bottom-up (from b, then from c).
-    let base_start = edge_start(a.x);
-    let base_at = |y: i32| base_start + (y - a.y) as i64 * base_step;
-    // Edges are evaluated per row from their start, so a row filter skips rows freely.
-    if core == 0 {
-        let bound = edge_start(a.x);
-        rows.each(a.y, b.y, |y| {
-            span(y, base_at(y), bound + (y - a.y) as i64 * upper_step)
-        });
-    } else {
-        let bound = edge_start(b.x);
-        rows.each_rev(a.y, b.y, |y| {
-            span(y, base_at(y), bound - (b.y - y) as i64 * upper_step)
-        });
-    }
-    if core == 2 {
-        let bound = edge_start(c.x);
-        rows.each_rev(b.y, c.y, |y| {
-            span(y, base_at(y), bound - (c.y - y) as i64 * lower_step)
-        });
-    } else {
-        let bound = edge_start(b.x);
-        rows.each(b.y, c.y, |y| {
-            span(y, base_at(y), bound + (y - b.y) as i64 * lower_step)
-        });
     }
     drawn
 }
