@@ -68,6 +68,9 @@ pub fn wall_scene() -> Scene {
     wall.scale = 200.0;
     wall.position = [0.0, -300.0, -900.0];
     wall.rotation = [0.0; 3];
+    // Fixed camera 600 units in front of the wall, level: the wall spans about 200 x 200
+    // pixels in the middle of the 320x240 screen, whatever the default animation does.
+    s.camera.position = [0.0, -300.0, -1500.0];
     s.camera.rotation = [0.0; 3];
     wall.spin = [0.0; 3];
     s.objects = vec![wall];
