@@ -8,6 +8,7 @@ mod line;
 #[cfg(feature = "precise")]
 pub(crate) mod precise;
 mod rectangle;
+mod span;
 mod triangle;
 
 use crate::color::{PLAIN_TABLE, ShadeTable, blend, pack555};

@@ -2,7 +2,9 @@
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
-use super::{Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, triangle_coverage, wrap11};
+use super::{
+    Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, triangle_coverage, wrap11,
+};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::DrawState;
@@ -141,6 +143,25 @@ pub(super) fn draw<
     let env = *env;
     let flat_color = super::flat_color(flat, env.mask_or);
     let step = grads.map(|g| g.0);
+    // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
+    // time; a 4-bit texture under one undithered colour keeps its shaded CLUT instead.
+    // Raw textures need no colour maths and stay pixel by pixel, as does a primitive that
+    // may read texels it has itself written (see `span::texture_clear_of`).
+    let groups = !BLEND
+        && !MASK_CHECK
+        && !RAW
+        && (GOURAUD || TEX != TEX_NONE)
+        && !(TEX == 1 && !GOURAUD && !DITHER)
+        && (TEX == TEX_NONE || {
+            let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
+            span::texture_clear_of(
+                &env.sampler,
+                TEX,
+                (xs.0.max(clip_left), xs.1.min(clip_right)),
+                (a.y.max(clip_top), c.y.min(clip_bottom)),
+            )
+        });
+    let lanes = span::LaneSteps::new(step);
 
     // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
     // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
@@ -196,6 +217,17 @@ pub(super) fn draw<
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
                 if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
                     super::fill_span(vram, row, x_start, x_end, flat_color);
+                } else if groups {
+                    let dx = x_start.wrapping_sub(cv.x) as u32;
+                    let dy = y.wrapping_sub(cv.y) as u32;
+                    let acc = core::array::from_fn(|i| {
+                        origin[i]
+                            .wrapping_add(grads[i].0.wrapping_mul(dx))
+                            .wrapping_add(grads[i].1.wrapping_mul(dy))
+                    });
+                    span::draw::<TEX, GOURAUD, DITHER>(
+                        vram, row, y, x_start, x_end, acc, &lanes, flat, &env,
+                    );
                 } else {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;

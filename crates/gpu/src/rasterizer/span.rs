@@ -1,0 +1,246 @@
+//! Opaque, unmasked spans of Gouraud-shaded or textured triangles, eight pixels at a time
+//! (docs/hardware/gpu.md §3.6, §6): the pixel pipeline of [`super::shade_pixel`] for
+//! primitives without semi-transparency or mask check, where a pixel's value depends only on
+//! its own attributes and texel. Colour maths runs on eight 16-bit lanes, attribute stepping
+//! on eight 32-bit lanes (SSE2 on x86-64, NEON on AArch64, plain arrays elsewhere); texels
+//! are fetched one by one.
+
+use super::PixelEnv;
+use crate::VRAM_LEN;
+use crate::color::DITHER_MATRIX;
+use wide::bytemuck::cast;
+use wide::{i16x8, i32x8, u16x8, u32x8};
+
+/// Pixels per group.
+const LANES: usize = 8;
+
+/// The dither offsets of eight consecutive pixels starting at a pixel with `x & 3 == c` on a
+/// line with `y & 3 == r`, indexed `[r][c]` (docs/hardware/gpu.md §6).
+static DITHER_LANES: [[[i16; LANES]; 4]; 4] = dither_lanes();
+
+const fn dither_lanes() -> [[[i16; LANES]; 4]; 4] {
+    let mut t = [[[0i16; LANES]; 4]; 4];
+    let mut r = 0;
+    while r < 4 {
+        let mut c = 0;
+        while c < 4 {
+            let mut k = 0;
+            while k < LANES {
+                t[r][c][k] = DITHER_MATRIX[r][(c + k) & 3] as i16;
+                k += 1;
+            }
+            c += 1;
+        }
+        r += 1;
+    }
+    t
+}
+
+/// A triangle's per-pixel attribute steps (0-2 colour, 3-4 UV; 8.24, wrapping like the
+/// console's 32-bit adders) spread over the lanes of a group: lane `k` of attribute `i` is
+/// `k * step[i]`, and a group advances every lane by `8 * step[i]`.
+#[derive(Clone, Copy)]
+pub(super) struct LaneSteps {
+    offset: [u32x8; 5],
+    group: [u32x8; 5],
+}
+
+impl LaneSteps {
+    /// Lane offsets for the per-pixel steps `step`.
+    #[inline(always)]
+    pub(super) fn new(step: [u32; 5]) -> Self {
+        Self {
+            offset: step.map(|s| u32x8::new(core::array::from_fn(|k| s.wrapping_mul(k as u32)))),
+            group: step.map(|s| u32x8::splat(s.wrapping_mul(LANES as u32))),
+        }
+    }
+}
+
+/// The 8-bit integer parts of eight 8.24 attribute lanes.
+#[inline(always)]
+fn integer(lanes: u32x8) -> i16x8 {
+    i16x8::from_i32x8_saturate(cast::<u32x8, i32x8>(lanes >> 24))
+}
+
+/// One channel to 5 bits: `clamp(c + d, 0, 255) >> 3` per lane (docs/hardware/gpu.md §6).
+#[inline(always)]
+fn to5(c: i16x8, d: i16x8) -> i16x8 {
+    (c + d).max(i16x8::ZERO).min(i16x8::splat(255)) >> 3
+}
+
+/// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`) for an opaque primitive
+/// without mask check whose texture, if any, is modulated. `acc` holds the five 8.24 attributes at `x_start` (0-2 colour,
+/// 3-4 UV); `flat` is the colour when not `GOURAUD`. A texel of value 0000h leaves its
+/// pixel as it is; others keep their bit 15 (docs/hardware/gpu.md §6, §7).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    row: usize,
+    y: i32,
+    x_start: i32,
+    x_end: i32,
+    acc: [u32; 5],
+    steps: &LaneSteps,
+    flat: [i32; 3],
+    env: &PixelEnv,
+) {
+    let textured = TEX != super::TEX_NONE;
+    let dither = if DITHER {
+        i16x8::new(DITHER_LANES[(y & 3) as usize][(x_start & 3) as usize])
+    } else {
+        i16x8::ZERO
+    };
+    let mask_or = i16x8::splat(env.mask_or as i16);
+    let flat = flat.map(|c| i16x8::splat(c as i16));
+    // Attribute `i` of pixel `x + k` in lane `k`.
+    let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
+    let mut x = x_start;
+    while x < x_end {
+        let start = row + x as usize;
+        let [r, g, b] = if GOURAUD {
+            [integer(lanes[0]), integer(lanes[1]), integer(lanes[2])]
+        } else {
+            flat
+        };
+        let mut texel = [0u16; LANES];
+        if textured {
+            let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
+            for k in 0..LANES {
+                texel[k] = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
+            }
+        }
+        let t = i16x8::new(texel.map(|t| t as i16));
+        let out = {
+            let (cr, cg, cb) = if textured {
+                // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
+                let five = i16x8::splat(0x1F);
+                (
+                    ((t & five) * r) >> 4,
+                    (((t >> 5) & five) * g) >> 4,
+                    (((t >> 10) & five) * b) >> 4,
+                )
+            } else {
+                (r, g, b)
+            };
+            to5(cr, dither)
+                | to5(cg, dither) << 5
+                | to5(cb, dither) << 10
+                | (t & i16x8::splat(i16::MIN))
+                | mask_or
+        };
+        let out = cast::<i16x8, u16x8>(out);
+        let n = ((x_end - x) as usize).min(LANES);
+        if let Some(dst) = vram.get_mut(start..start + n) {
+            if let Ok(dst) = <&mut [u16; LANES]>::try_from(&mut *dst) {
+                *dst = if textured {
+                    // Texel 0000h is transparent: the pixel keeps its value.
+                    let old = u16x8::new(*dst);
+                    cast::<i16x8, u16x8>(t.simd_eq(i16x8::ZERO))
+                        .select(old, out)
+                        .to_array()
+                } else {
+                    out.to_array()
+                };
+            } else {
+                let out = out.to_array();
+                for (k, d) in dst.iter_mut().enumerate() {
+                    if !textured || texel[k] != 0 {
+                        *d = out[k];
+                    }
+                }
+            }
+        }
+        for (l, s) in lanes.iter_mut().zip(&steps.group) {
+            *l += *s;
+        }
+        x += LANES as i32;
+    }
+}
+
+/// Whether the VRAM a texture page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) can be
+/// read from lies clear of the columns `[x0, x1)` and lines `[y0, y1)` a primitive writes.
+/// A group reads its eight texels before it writes its eight pixels, while the console reads
+/// and writes pixel by pixel; the two agree unless the primitive draws over its own texture.
+/// The page spans 64, 128 or 256 halfwords from its left edge (wrapping at 1024) and 256
+/// lines (wrapping at 512) (docs/hardware/gpu.md §7).
+pub(super) fn texture_clear_of(
+    sampler: &crate::texture::Sampler,
+    tex: u8,
+    (x0, x1): (i32, i32),
+    (y0, y1): (i32, i32),
+) -> bool {
+    let width = match tex {
+        1 => 64,
+        2 => 128,
+        _ => 256,
+    };
+    let overlaps = |start: usize, len: usize, modulus: usize, lo: i32, hi: i32| {
+        let (lo, hi) = (lo.max(0) as usize, hi.max(0) as usize);
+        let s = start % modulus;
+        let e = s + len;
+        (s < hi && lo < e) || (e > modulus && lo < e - modulus)
+    };
+    !(overlaps(sampler.page_x, width, 1024, x0, x1) && overlaps(sampler.page_y, 256, 512, y0, y1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Gpu;
+    use crate::state::TextureWindow;
+    use crate::texture::Sampler;
+
+    #[test]
+    fn texture_page_footprints() {
+        let clut = [0u16; 256];
+        let at = |x, y| Sampler::new(&clut, x, y, TextureWindow::default());
+        // A 4-bit page at (64, 0) covers columns 64..128 and lines 0..256.
+        assert!(texture_clear_of(&at(64, 0), 1, (0, 64), (0, 10)));
+        assert!(texture_clear_of(&at(64, 0), 1, (128, 200), (0, 10)));
+        assert!(!texture_clear_of(&at(64, 0), 1, (127, 200), (255, 300)));
+        assert!(texture_clear_of(&at(64, 0), 1, (100, 110), (256, 300)));
+        // An 8-bit page is 128 halfwords wide, a 15-bit one 256.
+        assert!(!texture_clear_of(&at(64, 0), 2, (191, 200), (0, 1)));
+        assert!(!texture_clear_of(&at(64, 0), 3, (319, 320), (0, 1)));
+        assert!(texture_clear_of(&at(64, 0), 3, (320, 400), (0, 1)));
+        // Pages wrap at column 1024 and line 512.
+        assert!(!texture_clear_of(&at(960, 0), 3, (10, 20), (0, 1)));
+        assert!(texture_clear_of(&at(960, 0), 3, (192, 960), (0, 1)));
+        assert!(!texture_clear_of(&at(0, 384), 3, (0, 1), (100, 110)));
+        assert!(texture_clear_of(&at(0, 384), 3, (0, 1), (128, 384)));
+    }
+
+    /// A modulated (neutral colour 80h, undithered) Gouraud-textured triangle drawn over its
+    /// own 15-bit page, one pixel to the right of the texels it samples: on the console each
+    /// pixel reads the texel its left neighbour has just written, so every row repeats the
+    /// texel left of its first pixel (docs/hardware/gpu.md §6: t5 * 80h >> 4 >> 3 = t5).
+    #[test]
+    fn drawing_over_its_own_texture_reads_pixel_by_pixel() {
+        let mut g = Gpu::new();
+        let texel = |x: usize, y: usize| (((x + 3 * y) % 31 + 1) | ((y % 31 + 1) << 5)) as u16;
+        for y in 0..40 {
+            for x in 0..40 {
+                g.vram_mut().set_pixel(x, y, texel(x, y));
+            }
+        }
+        let xy = |x: u32, y: u32| x | y << 16;
+        g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
+        g.gp0_words(&[
+            0x3480_8080,
+            xy(1, 0),
+            0,
+            0x0080_8080,
+            xy(33, 0),
+            32 | 0x100 << 16,
+            0x0080_8080,
+            xy(1, 32),
+            32 << 8,
+        ]);
+        for y in 0..30usize {
+            for x in 1..31 - y {
+                assert_eq!(g.vram().pixel(x, y), texel(0, y), "({x}, {y})");
+            }
+        }
+    }
+}
