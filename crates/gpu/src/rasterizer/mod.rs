@@ -89,6 +89,10 @@ pub(crate) struct PixelEnv<'a> {
     /// 0 for a transparent entry (CLUT value 0000h), else `10000h | shaded | texel bit 15`.
     /// Filled only when a span routine reads it (see [`shaded_clut4`]).
     pub lut: [u32; 16],
+    /// For a wide opaque flat primitive, a VRAM line's worth of its pixel value: long spans
+    /// are copied from it, which the platform's block copy does with the widest stores the
+    /// CPU has. Empty otherwise (see [`fill_span`]).
+    pub line: &'a [u16],
 }
 
 /// The 16 CLUT entries of a 4-bit texture shaded once for a primitive whose colour `rgb` and
@@ -203,12 +207,30 @@ pub(crate) fn flat_color(flat: [i32; 3], mask_or: u16) -> u16 {
     ) | mask_or
 }
 
+/// Spans this wide or wider are copied from [`PixelEnv::line`] when it is filled.
+pub(crate) const COPY_SPAN: i32 = 32;
+
+/// Primitives whose drawn width reaches this get a filled [`PixelEnv::line`].
+const LINE_WIDTH: i32 = 2 * COPY_SPAN;
+
 /// Write `c` to `[x_start, x_end)` of the VRAM line starting at `row`: the whole pixel
-/// pipeline of an opaque, unmasked, undithered flat primitive.
+/// pipeline of an opaque, unmasked, undithered flat primitive. `line` is empty or holds `c`
+/// in every entry.
 #[inline(always)]
-pub(crate) fn fill_span(vram: &mut [u16; VRAM_LEN], row: usize, x_start: i32, x_end: i32, c: u16) {
+pub(crate) fn fill_span(
+    vram: &mut [u16; VRAM_LEN],
+    row: usize,
+    x_start: i32,
+    x_end: i32,
+    c: u16,
+    line: &[u16],
+) {
+    let len = (x_end - x_start) as usize;
     if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-        s.fill(c);
+        match line.get(..len) {
+            Some(src) if x_end - x_start >= COPY_SPAN => s.copy_from_slice(src),
+            _ => s.fill(c),
+        }
     }
 }
 
@@ -477,6 +499,7 @@ fn env<'a>(
         blend: blend.unwrap_or_default(),
         sampler: Sampler::new(clut, page_x, page_y, state.window),
         lut: [0; 16],
+        line: &[],
     }
 }
 
@@ -490,7 +513,22 @@ pub(crate) fn draw_triangle_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
+    let line;
     let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    if tri.texture.is_none()
+        && !tri.gouraud
+        && !tri.dither
+        && tri.blend.is_none()
+        && !state.mask.check
+    {
+        let xs = tri.vertices.map(|p| wrap11(p.x));
+        let width = xs.iter().max().unwrap_or(&0) - xs.iter().min().unwrap_or(&0);
+        if width.min(state.area.right as i32 + 1 - state.area.left as i32) >= LINE_WIDTH {
+            let rgb = tri.vertices[0].color.map(i32::from);
+            line = [flat_color(rgb, env.mask_or); crate::VRAM_WIDTH];
+            env.line = &line;
+        }
+    }
     let raw = tri.texture.is_some_and(|t| t.raw);
     if uses_lut(tri.texture.as_ref(), tri.gouraud, tri.dither) {
         let rgb = tri.vertices[0].color.map(i32::from);
@@ -551,6 +589,7 @@ pub(crate) fn draw_line_rows(
         blend: line.blend.unwrap_or_default(),
         sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
         lut: [0; 16],
+        line: &[],
     };
     let (g, b, d, m) = (
         line.gouraud,
@@ -573,7 +612,16 @@ pub(crate) fn draw_rectangle_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
+    let line;
     let mut env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
+    if rect.texture.is_none()
+        && rect.blend.is_none()
+        && !state.mask.check
+        && rectangle::clip(rect, &state.area).is_some_and(|(x0, x1, _, _)| x1 - x0 >= LINE_WIDTH)
+    {
+        line = [flat_color(rect.origin.color.map(i32::from), env.mask_or); crate::VRAM_WIDTH];
+        env.line = &line;
+    }
     let raw = rect.texture.is_some_and(|t| t.raw);
     if uses_lut(rect.texture.as_ref(), false, false) {
         env.lut = shaded_clut4(env.sampler.clut, rect.origin.color.map(i32::from), raw);

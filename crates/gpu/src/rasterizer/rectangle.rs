@@ -60,6 +60,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
                 x_start,
                 x_end,
                 super::flat_color(flat, env.mask_or),
+                env.line,
             );
             return;
         }

@@ -216,7 +216,7 @@ pub(super) fn draw<
                 drawn.span(x_start, x_end);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
                 if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
-                    super::fill_span(vram, row, x_start, x_end, flat_color);
+                    super::fill_span(vram, row, x_start, x_end, flat_color, env.line);
                 } else if groups {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
