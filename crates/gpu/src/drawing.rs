@@ -198,6 +198,14 @@ impl Drawing {
         }
     }
 
+    /// `n` GP0 words of one command arrived: `n` calls of [`Drawing::receive`].
+    pub fn receive_words(&mut self, takes_space: bool, n: u32) {
+        if takes_space && !self.idle() {
+            self.partial_words += n;
+            self.fifo_words += n;
+        }
+    }
+
     /// The words received since the previous unit form a unit costing `cycles`.
     pub fn complete(&mut self, cycles: u32) {
         let words = core::mem::take(&mut self.partial_words);

@@ -463,6 +463,28 @@ impl Gpu {
         }
     }
 
+    /// Take a whole packet from the front of `words` when a new command starts there and
+    /// all its words are present: the same effect as passing them to [`Gpu::gp0`] one by
+    /// one (each word received, then the packet executed), without the per-word buffering.
+    /// Returns the number of words taken: 0 when the packet is not complete in `words` or
+    /// GP0 is in the middle of other input.
+    #[inline]
+    pub(crate) fn gp0_packet(&mut self, words: &[u32]) -> usize {
+        let (Mode::Command, 0, Some(&head)) = (self.gp0.mode, self.gp0.len, words.first()) else {
+            return 0;
+        };
+        let n = packet_len(head);
+        let (Some(packet), Some(buf)) = (words.get(..n), self.gp0.buf.get_mut(..n)) else {
+            return 0;
+        };
+        buf.copy_from_slice(packet);
+        self.drawing.receive_words(takes_fifo_space(head), n as u32);
+        let packet = self.gp0.buf;
+        let units = self.execute(&packet);
+        self.drawing.complete(units_to_gpu(units as u64));
+        n
+    }
+
     /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
     /// transfer or an unterminated polyline. `None` when the next word starts a new command.
     pub fn pending_input(&self) -> Option<PendingInput> {

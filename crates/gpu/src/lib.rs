@@ -263,9 +263,15 @@ impl Gpu {
     }
 
     /// A block of GP0 words, as DMA2 delivers them.
-    pub fn gp0_words(&mut self, words: &[u32]) {
-        for &w in words {
-            self.gp0(w);
+    pub fn gp0_words(&mut self, mut words: &[u32]) {
+        while let Some((&first, rest)) = words.split_first() {
+            let taken = self.gp0_packet(words);
+            if taken == 0 {
+                self.gp0(first);
+                words = rest;
+            } else {
+                words = words.get(taken..).unwrap_or_default();
+            }
         }
     }
 

@@ -444,3 +444,101 @@ fn packets_split_at_every_position() {
         assert!(g.vram() == whole.vram(), "split at {split}");
     }
 }
+
+/// One random GP0 packet: environment, fills, copies, polygons, lines, polylines,
+/// rectangles, a small CPU-to-VRAM transfer, IRQ requests, and stray words.
+fn packet() -> impl Strategy<Value = Vec<u32>> {
+    let xy = || (0u32..300, 0u32..260).prop_map(|(x, y)| x | y << 16);
+    prop_oneof![
+        (0xE1u32..=0xE6, any::<u32>()).prop_map(|(op, v)| vec![op << 24 | (v & 0xFF_FFFF)]),
+        (any::<u32>(), xy(), xy()).prop_map(|(c, p, s)| vec![0x0200_0000 | c & 0xFF_FFFF, p, s]),
+        (0x20u32..0x40, prop::collection::vec(any::<u32>(), 12)).prop_map(|(op, w)| {
+            let mut v = vec![op << 24 | (w[0] & 0xFF_FFFF)];
+            let n = gpu_packet_len(op << 24) - 1;
+            v.extend(w[1..=n].iter().map(|&x| x & 0x00FF_00FF));
+            v
+        }),
+        (0x40u32..0x60, prop::collection::vec(xy(), 6)).prop_map(|(op, p)| {
+            let mut v = vec![op << 24 | 0x80_4020];
+            if op & 0x08 != 0 {
+                v.extend(&p[..4]);
+                v.push(0x5555_5555);
+            } else {
+                v.extend(&p[..gpu_packet_len(op << 24) - 1]);
+            }
+            v
+        }),
+        (0x60u32..0x80, prop::collection::vec(xy(), 3)).prop_map(|(op, p)| {
+            let mut v = vec![op << 24 | 0x40_8080];
+            v.extend(&p[..gpu_packet_len(op << 24) - 1]);
+            v
+        }),
+        (xy(), xy(), xy()).prop_map(|(a, b, s)| vec![0x8000_0000, a, b, s & 0x003F_003F]),
+        (xy(), any::<[u32; 4]>())
+            .prop_map(|(p, px)| [&[0xA000_0000, p, 0x0002_0004][..], &px[..]].concat()),
+        Just(vec![0x1F00_0000]),
+        any::<u32>().prop_map(|w| vec![w]),
+    ]
+}
+
+/// Words in the packet a command word starts, for the generator (docs/hardware/gpu.md §2):
+/// polygons 1 + vertices x (1 + textured) + Gouraud colours, lines 3 or 4 (polylines start
+/// with 3 or 4), rectangles 2-4.
+fn gpu_packet_len(cmd: u32) -> usize {
+    let op = cmd >> 24;
+    match op {
+        0x20..=0x3F => {
+            let verts = if op & 0x08 != 0 { 4 } else { 3 };
+            let per = 1 + (op >> 2 & 1) as usize;
+            let colors = if op & 0x10 != 0 { verts - 1 } else { 0 };
+            1 + verts * per + colors
+        }
+        0x40..=0x5F => {
+            if op & 0x10 != 0 {
+                4
+            } else {
+                3
+            }
+        }
+        _ => {
+            let size = if op & 0x18 == 0 { 1 } else { 0 };
+            2 + (op >> 2 & 1) as usize + size
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// `gp0_words` over blocks of any size has the effect of `gp0` word by word: the same
+    /// VRAM, GPUSTAT (with the FIFO-full bit), pending input and next event, with the GPU
+    /// run between blocks.
+    #[test]
+    fn blocks_equal_single_words(
+        packets in prop::collection::vec(packet(), 1..40),
+        splits in prop::collection::vec((1usize..30, 0u32..3000), 1..40),
+    ) {
+        let words: Vec<u32> = packets.concat();
+        let (mut blocks, mut single) = (Gpu::new(), Gpu::new());
+        // GP1(04h) = 1: GPUSTAT.25 shows whether the FIFO is full (docs/hardware/gpu.md §8).
+        blocks.gp1(0x0400_0001);
+        single.gp1(0x0400_0001);
+        let mut at = 0;
+        let mut i = 0;
+        while at < words.len() {
+            let (len, cycles) = splits[i % splits.len()];
+            i += 1;
+            let end = (at + len).min(words.len());
+            blocks.gp0_words(&words[at..end]);
+            for &w in &words[at..end] {
+                single.gp0(w);
+            }
+            prop_assert_eq!(blocks.run(cycles), single.run(cycles));
+            prop_assert_eq!(blocks.gpustat(), single.gpustat());
+            prop_assert_eq!(blocks.pending_input(), single.pending_input());
+            prop_assert_eq!(blocks.cycles_until_next_event(), single.cycles_until_next_event());
+            at = end;
+        }
+        prop_assert!(blocks.vram() == single.vram());
+    }
+}
