@@ -189,11 +189,37 @@ pub(crate) fn shade_pixel<
 
 /// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (docs/hardware/gpu.md §3.4, §4).
 /// `steps` > 0.
+#[inline]
 pub(crate) fn step_away_from_zero(delta: i32, steps: i32) -> i64 {
-    let n = (delta as i64) << 32;
-    let bias = steps as i64 - 1;
-    let n = if n < 0 { n - bias } else { n + bias };
-    n / steps as i64
+    let magnitude = (u64::from(delta.unsigned_abs()) << 32) + (steps.max(1) - 1) as u64;
+    let q = match RECIPROCALS.get(steps as usize) {
+        // Edges and lines span at most 1023 steps of at most 2047 pixels.
+        Some(&r) if steps > 1 && magnitude < 1 << 54 => divide_by_reciprocal(magnitude, r) as i64,
+        _ => (magnitude / steps.max(1) as u64) as i64,
+    };
+    if delta < 0 { -q } else { q }
+}
+
+/// `floor(n / d)` as `(n * r) >> 64` with `r = floor(2^64 / d) + 1`, `2 <= d < 1024`. Exact
+/// for `n < 2^54`: with `e = r * d - 2^64` (`0 < e <= d`), `n * r / 2^64 = n / d + n * e /
+/// (d * 2^64)`, and the excess stays below `1 / d` when `n * e < 2^64`, too little to reach
+/// the next multiple of `1 / d`. Edge steps divide at most 2047 * 2^32 + 1022 < 2^43.
+#[inline(always)]
+fn divide_by_reciprocal(n: u64, r: u64) -> u64 {
+    ((u128::from(n) * u128::from(r)) >> 64) as u64
+}
+
+/// `floor(2^64 / d) + 1` for `d` in 2..1024 (entries 0 and 1 unused).
+static RECIPROCALS: [u64; 1024] = reciprocals();
+
+const fn reciprocals() -> [u64; 1024] {
+    let mut t = [0u64; 1024];
+    let mut d = 2;
+    while d < 1024 {
+        t[d] = ((1u128 << 64) / d as u128) as u64 + 1;
+        d += 1;
+    }
+    t
 }
 
 /// The pixel an opaque, unmasked, undithered flat primitive writes: its colour to 5 bits
@@ -633,5 +659,39 @@ pub(crate) fn draw_rectangle_rows(
         1 => dispatch!(draw(vram, state, &env, rect, rows); [1,]; raw, b, m),
         2 => dispatch!(draw(vram, state, &env, rect, rows); [2,]; raw, b, m),
         _ => dispatch!(draw(vram, state, &env, rect, rows); [3,]; raw, b, m),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reciprocal division equals i64 division, rounded away from zero as the
+    /// docs/hardware/gpu.md §3.4 formula states, for every delta an edge or line can have
+    /// (11-bit coordinates) and every step count up to 1023, and at the extremes beyond.
+    #[test]
+    fn steps_equal_plain_division() {
+        let plain = |delta: i32, steps: i32| {
+            let n = (delta as i64) << 32;
+            let bias = steps as i64 - 1;
+            (if n < 0 { n - bias } else { n + bias }) / steps as i64
+        };
+        for steps in 1..1024 {
+            for delta in -2047..=2047 {
+                assert_eq!(
+                    step_away_from_zero(delta, steps),
+                    plain(delta, steps),
+                    "{delta}/{steps}"
+                );
+            }
+        }
+        for (delta, steps) in [
+            (i32::MAX, 1023),
+            (i32::MIN + 1, 1023),
+            (i32::MAX, 5000),
+            (7, 1024),
+        ] {
+            assert_eq!(step_away_from_zero(delta, steps), plain(delta, steps));
+        }
     }
 }
