@@ -44,12 +44,49 @@ fn edge_step(dx: i32, dy: i32) -> i64 {
     super::step_away_from_zero(dx, dy)
 }
 
+/// Truncating division by a triangle's gradient denominator, one hardware divide per
+/// triangle instead of two per attribute: `n / den` (rounded toward zero) as
+/// `(|n| * r) >> 64` with `r = floor(2^64 / |den|) + 1`, exact while `|n| * |den| < 2^64`
+/// (the excess over `|n| / |den|` stays below `1 / |den|`). `|den|` < 2^21 and the gradient
+/// numerators |n| < 2^31 (docs/hardware/gpu.md §3.6).
+#[derive(Clone, Copy)]
+struct Divisor {
+    magnitude: u64,
+    reciprocal: u64,
+    negative: bool,
+}
+
+impl Divisor {
+    fn new(den: i64) -> Self {
+        let magnitude = den.unsigned_abs().max(1);
+        Self {
+            magnitude,
+            // For a power of two, u64::MAX / d + 1 is 2^64 / d exactly; else floor(2^64 / d) + 1.
+            reciprocal: (u64::MAX / magnitude).wrapping_add(1),
+            negative: den < 0,
+        }
+    }
+
+    #[inline(always)]
+    fn divide(self, n: i64) -> i64 {
+        let m = n.unsigned_abs();
+        let q = if self.magnitude == 1 {
+            m as i64
+        } else if m < 1 << 42 && self.magnitude < 1 << 22 {
+            ((u128::from(m) * u128::from(self.reciprocal)) >> 64) as i64
+        } else {
+            (m / self.magnitude) as i64
+        };
+        if (n < 0) != self.negative { -q } else { q }
+    }
+}
+
 /// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), i32 maths with truncating division.
-fn gradient(v: &[Vtx; 3], i: usize, den: i64) -> (u32, u32) {
+fn gradient(v: &[Vtx; 3], i: usize, den: Divisor) -> (u32, u32) {
     let (a, b, c) = (&v[0], &v[1], &v[2]);
     let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
-    let ddx = ((ba - aa) * (c.y - b.y) as i64 - (ca - ba) * (b.y - a.y) as i64) * 4096 / den;
-    let ddy = ((b.x - a.x) as i64 * (ca - ba) - (c.x - b.x) as i64 * (ba - aa)) * 4096 / den;
+    let ddx = den.divide(((ba - aa) * (c.y - b.y) as i64 - (ca - ba) * (b.y - a.y) as i64) * 4096);
+    let ddy = den.divide(((b.x - a.x) as i64 * (ca - ba) - (c.x - b.x) as i64 * (ba - aa)) * 4096);
     ((ddx as i32 as u32) << 12, (ddy as i32 as u32) << 12)
 }
 
@@ -116,9 +153,10 @@ pub(super) fn draw<
     let mut origin = [0u32; 5];
     let cv = v[core];
     let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
+    let divisor = Divisor::new(den);
     for i in 0..5 {
         if used(i) {
-            grads[i] = gradient(&v, i, den);
+            grads[i] = gradient(&v, i, divisor);
         }
         origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
     }
@@ -276,4 +314,54 @@ pub(super) fn draw<
         }
     }
     drawn
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Divisor;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The reciprocal divide truncates toward zero as i64 division does, over the whole
+        /// range of gradient numerators and denominators and at their extremes.
+        #[test]
+        fn divisor_truncates_like_division(
+            n in prop_oneof![-(1i64 << 31)..(1i64 << 31), any::<i64>().prop_map(|n| n >> 8)],
+            den in prop_oneof![-(1i64 << 21)..(1i64 << 21), -4i64..4],
+        ) {
+            prop_assume!(den != 0);
+            prop_assert_eq!(Divisor::new(den).divide(n), n / den);
+        }
+    }
+
+    #[test]
+    fn divisor_edges() {
+        for den in [
+            1i64,
+            -1,
+            2,
+            -2,
+            3,
+            1 << 20,
+            -(1 << 20),
+            (1 << 21) - 1,
+            4095,
+            4096,
+        ] {
+            for n in [
+                0i64,
+                1,
+                -1,
+                den,
+                -den,
+                den - 1,
+                den + 1,
+                (1 << 31) - 1,
+                -(1 << 31),
+                1 << 41,
+            ] {
+                assert_eq!(Divisor::new(den).divide(n), n / den, "{n} / {den}");
+            }
+        }
+    }
 }
