@@ -104,7 +104,6 @@ pub(super) fn draw<
         }
     }
     DrawCount {
-        rows: 0,
         pixels: k as u32 + 1,
         pairs: 0,
     }

@@ -21,22 +21,23 @@ use crate::{VRAM_LEN, Vram};
 /// drawing-time model (docs/emulator.md, "Drawing time, FIFO and DMA").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DrawCount {
-    /// Rows with at least one pixel (lines: 0).
-    pub rows: u32,
     /// Pixels drawn (lines: points stepped through, drawn or clipped).
     pub pixels: u32,
     /// Pixel pairs the spans touch, counted on even-aligned pairs: what a read-modify-write
-    /// span (blending or mask check) reads from VRAM.
+    /// span (blending or mask check) reads from VRAM. Counted only for such spans (the model
+    /// charges nothing for them otherwise); 0 for others.
     pub pairs: u32,
 }
 
 impl DrawCount {
-    /// Count one span `[x_start, x_end)`, `x_start < x_end`.
+    /// Count one span `[x_start, x_end)`, `x_start < x_end`, that reads VRAM back when
+    /// `read_back` (a constant in every caller).
     #[inline(always)]
-    pub(crate) fn span(&mut self, x_start: i32, x_end: i32) {
-        self.rows += 1;
+    pub(crate) fn span(&mut self, x_start: i32, x_end: i32, read_back: bool) {
         self.pixels += (x_end - x_start) as u32;
-        self.pairs += ((((x_end + 1) & !1) - (x_start & !1)) >> 1) as u32;
+        if read_back {
+            self.pairs += ((((x_end + 1) & !1) - (x_start & !1)) >> 1) as u32;
+        }
     }
 }
 

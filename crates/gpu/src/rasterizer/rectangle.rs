@@ -36,10 +36,9 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
         return DrawCount::default();
     };
     let mut row_count = DrawCount::default();
-    row_count.span(x_start, x_end);
+    row_count.span(x_start, x_end, BLEND || MASK_CHECK);
     let rows = filter.count(y_start, y_end);
     let drawn = DrawCount {
-        rows,
         pixels: row_count.pixels * rows,
         pairs: row_count.pairs * rows,
     };

@@ -251,7 +251,7 @@ pub(super) fn draw<
             l += dl;
             r += dr;
             if x_start < x_end {
-                drawn.span(x_start, x_end);
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
                 if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
                     super::fill_span(vram, row, x_start, x_end, flat_color, env.line);
