@@ -3,8 +3,9 @@
 //! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
 //! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
 //!
-//! One frame runs the stages in order: `gte_stage` (transform, cull, clip, light, depth;
-//! splitting polygons as `tessellate` and `clip` decide), `ot_stage` (GP0 packets linked into
+//! One frame runs the stages in order: `gte_stage` (transform each shared vertex once, then
+//! cull, clip, light and depth per polygon; splitting polygons as `tessellate` and `clip`
+//! decide), `ot_stage` (GP0 packets linked into
 //! the ordering table), `gpu_stage` (the OT walk into the GPU, or the precise path).
 
 mod clip;
