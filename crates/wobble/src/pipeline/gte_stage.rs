@@ -380,74 +380,86 @@ impl Renderer {
             if share {
                 project_shared(g, &prepared.vertices, shared);
             }
-            for (face_index, face) in prepared.faces.iter().enumerate() {
+            for (face_index, mesh_face) in prepared.faces.iter().enumerate() {
                 // The mesh face itself uses its shared vertices; its pieces, new vertices
-                // made by splitting, go through RTPT/RTPS one piece at a time.
+                // made by splitting, go through RTPT/RTPS one piece at a time, depth first
+                // from the split stack.
                 let indices = prepared.indices.get(face_index).filter(|_| share);
-                stack.push(*face, 0);
-                while let Some((face, level)) = stack.pop() {
-                    let indices = indices.filter(|_| level == 0);
-                    let t = match indices {
-                        Some(indices) => transform_shared(g, shared, indices, face.quad),
-                        None => transform(g, &face, options.subpixel),
-                    };
-                    let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
-                    let split = level < prepared.level && needs_split(&verdict, split_extent);
-                    if let Some(tr) = trace.as_deref_mut() {
-                        let fate = match verdict {
-                            _ if split => FaceFate::Split,
-                            Verdict::Drop(c) => FaceFate::Dropped(c),
-                            Verdict::Cull => FaceFate::Culled,
-                            Verdict::Offscreen => FaceFate::Offscreen,
-                            Verdict::Draw { .. } if scratch.len() >= capacity => FaceFate::Overflow,
-                            // The slot is filled in below.
-                            Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
+                let mut piece;
+                let (mut face, mut level) = (mesh_face, 0u8);
+                loop {
+                    'examine: {
+                        let indices = indices.filter(|_| level == 0);
+                        let t = match indices {
+                            Some(indices) => transform_shared(g, shared, indices, face.quad),
+                            None => transform(g, face, options.subpixel),
                         };
-                        tr.faces.push(FaceRecord {
-                            object: object_index,
-                            face: face_index,
-                            level,
-                            fate,
-                        });
-                    }
-                    if split {
-                        stack.push_split(&face, level + 1);
-                        continue;
-                    }
-                    stats.polygons += 1;
-                    let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
-                        continue;
-                    };
-                    if scratch.len() >= capacity {
-                        stats.dropped += 1;
-                        continue;
-                    }
-                    let color = match indices {
-                        Some(indices) => light_shared(
-                            g,
-                            lighting,
-                            shared,
-                            &prepared.vertices,
-                            (indices, face.quad),
-                            object.color,
-                            ir0,
-                        ),
-                        None => light(g, lighting, &face, object.color, ir0),
-                    };
-                    if options.precise() {
-                        precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
-                    }
-                    let projected = emit(g, &face, (xy, sz), color, (texture, blend));
-                    if let Some(tr) = trace.as_deref_mut() {
-                        let record = tr.faces.len().saturating_sub(1);
-                        if let Some(r) = tr.faces.last_mut() {
-                            r.fate = FaceFate::Drawn {
-                                ot_slot: projected.ot_index,
+                        let verdict =
+                            classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
+                        let split = level < prepared.level && needs_split(&verdict, split_extent);
+                        if let Some(tr) = trace.as_deref_mut() {
+                            let fate = match verdict {
+                                _ if split => FaceFate::Split,
+                                Verdict::Drop(c) => FaceFate::Dropped(c),
+                                Verdict::Cull => FaceFate::Culled,
+                                Verdict::Offscreen => FaceFate::Offscreen,
+                                Verdict::Draw { .. } if scratch.len() >= capacity => {
+                                    FaceFate::Overflow
+                                }
+                                // The slot is filled in below.
+                                Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
                             };
+                            tr.faces.push(FaceRecord {
+                                object: object_index,
+                                face: face_index,
+                                level,
+                                fate,
+                            });
                         }
-                        tr.scratch_face.push(record);
+                        if split {
+                            stack.push_split(face, level + 1);
+                            break 'examine;
+                        }
+                        stats.polygons += 1;
+                        let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
+                            break 'examine;
+                        };
+                        if scratch.len() >= capacity {
+                            stats.dropped += 1;
+                            break 'examine;
+                        }
+                        let color = match indices {
+                            Some(indices) => light_shared(
+                                g,
+                                lighting,
+                                shared,
+                                &prepared.vertices,
+                                (indices, face.quad),
+                                object.color,
+                                ir0,
+                            ),
+                            None => light(g, lighting, face, object.color, ir0),
+                        };
+                        if options.precise() {
+                            precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
+                        }
+                        let projected = emit(g, face, (xy, sz), color, (texture, blend));
+                        if let Some(tr) = trace.as_deref_mut() {
+                            let record = tr.faces.len().saturating_sub(1);
+                            if let Some(r) = tr.faces.last_mut() {
+                                r.fate = FaceFate::Drawn {
+                                    ot_slot: projected.ot_index,
+                                };
+                            }
+                            tr.scratch_face.push(record);
+                        }
+                        scratch.push(projected);
                     }
-                    scratch.push(projected);
+                    let Some((next, next_level)) = stack.pop() else {
+                        break;
+                    };
+                    piece = next;
+                    (face, level) = (&piece, next_level);
                 }
             }
         }

@@ -153,10 +153,38 @@ fn counts(s: &FrameStats) -> [usize; 6] {
 }
 
 fn renderers(scene: &Scene) -> (Renderer, Renderer) {
-    let shared = Renderer::new(scene.clone(), PipelineOptions::default()).expect("renderer");
-    let mut reference = Renderer::new(scene.clone(), PipelineOptions::default()).expect("renderer");
+    renderers_with(scene, PipelineOptions::default())
+}
+
+fn renderers_with(scene: &Scene, options: PipelineOptions) -> (Renderer, Renderer) {
+    let shared = Renderer::new(scene.clone(), options).expect("renderer");
+    let mut reference = Renderer::new(scene.clone(), options).expect("renderer");
     reference.per_polygon = true;
     (shared, reference)
+}
+
+/// Perspective-correct texture coordinates (the precise path, whole-pixel vertices) take
+/// their screen positions and 1/SZ from the shared vertices: the same VRAM.
+#[cfg(feature = "accuracy-knobs")]
+#[test]
+fn shared_vertices_feed_the_precise_path() {
+    let options = PipelineOptions {
+        perspective_uv: true,
+        ..PipelineOptions::default()
+    };
+    for (name, scene) in scenes() {
+        let (mut shared, mut reference) = renderers_with(&scene, options);
+        for frame in [0, 7, 90] {
+            let a = shared.render_frame(frame);
+            let b = reference.render_frame(frame);
+            assert_eq!(counts(&a), counts(&b), "{name}, frame {frame}");
+            assert!(
+                shared.gpu().vram().as_slice() == reference.gpu().vram().as_slice(),
+                "{name}, frame {frame}: VRAM differs"
+            );
+        }
+        assert!(!shared.shared.is_empty(), "{name}: no vertex projected");
+    }
 }
 
 /// Several frames of each scene: the same VRAM (both display buffers and the textures)
