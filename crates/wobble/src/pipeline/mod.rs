@@ -5,8 +5,8 @@
 //!
 //! One frame runs the stages in order: `gte_stage` (transform each shared vertex once, then
 //! cull, clip, light and depth per polygon; splitting polygons as `tessellate` and `clip`
-//! decide), `ot_stage` (GP0 packets linked into
-//! the ordering table), `gpu_stage` (the OT walk into the GPU, or the precise path).
+//! decide), `ot_stage` (GP0 packets linked into the ordering table), `gpu_stage` (the OT
+//! walk into the GPU, or the precise path).
 
 mod clip;
 mod gpu_stage;
