@@ -1,9 +1,11 @@
-//! The GTE stage: per object, RT/TR/light/fog set-up; per polygon, RTPT/RTPS and NCLIP,
-//! the clip verdict, splitting while the tessellation level allows, NCCT/NCDT/DPCS colours
-//! and AVSZ3/AVSZ4 for the ordering-table index.
+//! The GTE stage: per object, RT/TR/light/fog set-up and one RTPS per shared vertex; per
+//! mesh face, NCLIP on its vertices' screen positions, the clip verdict, colours (NCCS/NCDS
+//! once per vertex, or per fade factor with fog; DPCS) and AVSZ3/AVSZ4 for the
+//! ordering-table index. A face split by tessellation, and every face with sub-pixel
+//! positions, goes through its own RTPT/RTPS, NCLIP and NCCT/NCDT instead.
 
 use super::clip::{Verdict, classify};
-use super::object::{angle, object_rotation, object_transform, to_fixed};
+use super::object::{SharedVertex, angle, object_rotation, object_transform, to_fixed};
 use super::tessellate::PreparedFace;
 use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer, SUBPIXEL_BITS, SubpixelVertex};
@@ -88,6 +90,74 @@ fn transform(g: &mut Geometry, face: &PreparedFace, subpixel: bool) -> Transform
     t
 }
 
+/// A shared vertex after its RTPS, and its colour once a drawn face has lit it.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct SharedProjection {
+    xy: (i16, i16),
+    sz: u16,
+    ir0: I4F12,
+    flag: Flag,
+    /// What `color` was computed for: the IR0 bits NCDS faded it by (0 for NCCS, which
+    /// does not fade), or [`UNLIT`].
+    lit: i32,
+    color: [u8; 3],
+}
+
+/// [`SharedProjection::lit`] of a vertex no face has lit yet this frame.
+const UNLIT: i32 = -1;
+
+/// One RTPS per shared vertex of an object, as games run RTPS/RTPT over a vertex list into
+/// a scratch buffer. Each vertex gets its SXY, SZ, IR0 and FLAG from its own command: what
+/// RTPT leaves for it, as its steps 5.1-5.6 run per vertex (docs/hardware/gte.md §5).
+fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<SharedProjection>) {
+    out.clear();
+    out.extend(vertices.iter().map(|v| {
+        let p = g.project(v.position);
+        SharedProjection {
+            xy: (p.x, p.y),
+            sz: p.sz,
+            ir0: p.ir0,
+            flag: p.flag,
+            lit: UNLIT,
+            color: [0; 3],
+        }
+    }));
+}
+
+/// A mesh face's vertices from their RTPS, and NCLIP on the first three loaded into SXY0-2.
+///
+/// Equal to [`transform`] for the clip verdict: FLAG is the OR of the vertices' FLAGs. The
+/// verdict reads only SZ3 saturation, divide overflow and SX2/SY2 saturation, which RTPT
+/// sets per vertex (docs/hardware/gte.md §5.4-5.6, §6); RTPT runs the depth cue (§5.7, IR0
+/// saturation and MAC0 flags) for its last vertex only, RTPS for each, so those bits may
+/// differ and are not read. IR0 is the last vertex's, SXY and SZ the vertices' own, and
+/// NCLIP is a function of SXY0-2 alone (§7).
+fn transform_shared(
+    g: &mut Geometry,
+    shared: &[SharedProjection],
+    indices: &[u32; 4],
+    quad: bool,
+) -> Transformed {
+    let n = if quad { 4 } else { 3 };
+    let mut t = Transformed {
+        flag: Flag::default(),
+        area: 0,
+        xy: [(0, 0); 4],
+        sz: [0; 4],
+        ir0: I4F12::ZERO,
+        fine: None,
+    };
+    for (k, &i) in indices.iter().enumerate().take(n) {
+        let v = shared.get(i as usize).copied().unwrap_or_default();
+        t.flag = t.flag.union(v.flag);
+        t.xy[k] = v.xy;
+        t.sz[k] = v.sz;
+        t.ir0 = v.ir0;
+    }
+    t.area = g.nclip([t.xy[0], t.xy[1], t.xy[2]]);
+    t
+}
+
 /// Whether a polygon is split again rather than drawn, given its verdict.
 fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
     match verdict {
@@ -137,6 +207,54 @@ fn light(
             color[..3].copy_from_slice(&c);
             if face.quad {
                 color[3] = g.normal_color_depth(v[3].normal, base);
+            }
+        }
+        (false, true) => color = [g.depth_cue(base, ir0); 4],
+        (false, false) => {}
+    }
+    color
+}
+
+/// [`light`] for a mesh face from its shared vertices: NCCS once per vertex a frame; with
+/// fog, NCDS with IR0 loaded with the face's factor (its last vertex's IR0, what NCDT reads
+/// after RTPT, docs/hardware/gte.md §5.7), once per vertex and factor: a vertex keeps the
+/// colour of the last factor it was faded by. NCCT and NCDT are NCCS and NCDS for each of
+/// three normals (§8), so the colours are the same.
+#[allow(clippy::too_many_arguments)]
+fn light_shared(
+    g: &mut Geometry,
+    (lit, fogged): (bool, bool),
+    shared: &mut [SharedProjection],
+    vertices: &[SharedVertex],
+    (indices, quad): (&[u32; 4], bool),
+    base: [u8; 3],
+    ir0: I4F12,
+) -> [[u8; 3]; 4] {
+    let mut color = [base; 4];
+    match (lit, fogged) {
+        (true, _) => {
+            let key = if fogged { i32::from(ir0.to_bits()) } else { 0 };
+            let mut ir0_loaded = false;
+            let n = if quad { 4 } else { 3 };
+            for (k, c) in color.iter_mut().enumerate().take(n) {
+                let i = indices[k] as usize;
+                let Some(v) = shared.get_mut(i) else {
+                    continue;
+                };
+                if v.lit != key {
+                    let normal = vertices.get(i).copied().unwrap_or_default().normal;
+                    v.color = if fogged {
+                        if !ir0_loaded {
+                            g.gte_mut().write_data(8, ir0.to_bits() as i32 as u32);
+                            ir0_loaded = true;
+                        }
+                        g.normal_color_depth(normal, base)
+                    } else {
+                        g.normal_color_color(normal, base)
+                    };
+                    v.lit = key;
+                }
+                *c = v.color;
             }
         }
         (false, true) => color = [g.depth_cue(base, ir0); 4],
@@ -225,6 +343,8 @@ impl Renderer {
         if let Some(t) = trace.as_deref_mut() {
             t.clear();
         }
+        let share = !options.subpixel && !self.per_polygon;
+        let shared = &mut self.shared;
         for (object_index, (object, prepared)) in
             scene.objects.iter().zip(&self.objects).enumerate()
         {
@@ -257,56 +377,89 @@ impl Renderer {
                 let blend = gpu::BlendMode::from_bits(u32::from(blend.unwrap_or(0)));
                 (p.clut_attr().bits(), p.texpage(depth, blend).bits())
             });
-            for (face_index, face) in prepared.faces.iter().enumerate() {
-                stack.push(*face, 0);
-                while let Some((face, level)) = stack.pop() {
-                    let t = transform(g, &face, options.subpixel);
-                    let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
-                    let split = level < prepared.level && needs_split(&verdict, split_extent);
-                    if let Some(tr) = trace.as_deref_mut() {
-                        let fate = match verdict {
-                            _ if split => FaceFate::Split,
-                            Verdict::Drop(c) => FaceFate::Dropped(c),
-                            Verdict::Cull => FaceFate::Culled,
-                            Verdict::Offscreen => FaceFate::Offscreen,
-                            Verdict::Draw { .. } if scratch.len() >= capacity => FaceFate::Overflow,
-                            // The slot is filled in below.
-                            Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
+            if share {
+                project_shared(g, &prepared.vertices, shared);
+            }
+            for (face_index, mesh_face) in prepared.faces.iter().enumerate() {
+                // The mesh face itself uses its shared vertices; its pieces, new vertices
+                // made by splitting, go through RTPT/RTPS one piece at a time, depth first
+                // from the split stack.
+                let indices = prepared.indices.get(face_index).filter(|_| share);
+                let mut piece;
+                let (mut face, mut level) = (mesh_face, 0u8);
+                loop {
+                    'examine: {
+                        let indices = indices.filter(|_| level == 0);
+                        let t = match indices {
+                            Some(indices) => transform_shared(g, shared, indices, face.quad),
+                            None => transform(g, face, options.subpixel),
                         };
-                        tr.faces.push(FaceRecord {
-                            object: object_index,
-                            face: face_index,
-                            level,
-                            fate,
-                        });
-                    }
-                    if split {
-                        stack.push_split(&face, level + 1);
-                        continue;
-                    }
-                    stats.polygons += 1;
-                    let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
-                        continue;
-                    };
-                    if scratch.len() >= capacity {
-                        stats.dropped += 1;
-                        continue;
-                    }
-                    let color = light(g, lighting, &face, object.color, ir0);
-                    if options.precise() {
-                        precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
-                    }
-                    let projected = emit(g, &face, (xy, sz), color, (texture, blend));
-                    if let Some(tr) = trace.as_deref_mut() {
-                        let record = tr.faces.len().saturating_sub(1);
-                        if let Some(r) = tr.faces.last_mut() {
-                            r.fate = FaceFate::Drawn {
-                                ot_slot: projected.ot_index,
+                        let verdict =
+                            classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
+                        let split = level < prepared.level && needs_split(&verdict, split_extent);
+                        if let Some(tr) = trace.as_deref_mut() {
+                            let fate = match verdict {
+                                _ if split => FaceFate::Split,
+                                Verdict::Drop(c) => FaceFate::Dropped(c),
+                                Verdict::Cull => FaceFate::Culled,
+                                Verdict::Offscreen => FaceFate::Offscreen,
+                                Verdict::Draw { .. } if scratch.len() >= capacity => {
+                                    FaceFate::Overflow
+                                }
+                                // The slot is filled in below.
+                                Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
                             };
+                            tr.faces.push(FaceRecord {
+                                object: object_index,
+                                face: face_index,
+                                level,
+                                fate,
+                            });
                         }
-                        tr.scratch_face.push(record);
+                        if split {
+                            stack.push_split(face, level + 1);
+                            break 'examine;
+                        }
+                        stats.polygons += 1;
+                        let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
+                            break 'examine;
+                        };
+                        if scratch.len() >= capacity {
+                            stats.dropped += 1;
+                            break 'examine;
+                        }
+                        let color = match indices {
+                            Some(indices) => light_shared(
+                                g,
+                                lighting,
+                                shared,
+                                &prepared.vertices,
+                                (indices, face.quad),
+                                object.color,
+                                ir0,
+                            ),
+                            None => light(g, lighting, face, object.color, ir0),
+                        };
+                        if options.precise() {
+                            precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
+                        }
+                        let projected = emit(g, face, (xy, sz), color, (texture, blend));
+                        if let Some(tr) = trace.as_deref_mut() {
+                            let record = tr.faces.len().saturating_sub(1);
+                            if let Some(r) = tr.faces.last_mut() {
+                                r.fate = FaceFate::Drawn {
+                                    ot_slot: projected.ot_index,
+                                };
+                            }
+                            tr.scratch_face.push(record);
+                        }
+                        scratch.push(projected);
                     }
-                    scratch.push(projected);
+                    let Some((next, next_level)) = stack.pop() else {
+                        break;
+                    };
+                    piece = next;
+                    (face, level) = (&piece, next_level);
                 }
             }
         }
@@ -322,6 +475,71 @@ mod tests {
 
     fn vertex() -> impl Strategy<Value = Vector3> {
         (-2000i16..2000, -2000i16..2000, -2000i16..2000).prop_map(|(x, y, z)| Vector3 { x, y, z })
+    }
+
+    /// A 1.3.12 normal, not necessarily of unit length.
+    fn normal() -> impl Strategy<Value = Vector3> {
+        (-4096i16..=4096, -4096i16..=4096, -4096i16..=4096).prop_map(|(x, y, z)| Vector3 {
+            x,
+            y,
+            z,
+        })
+    }
+
+    /// A GTE set up as the stage sets it for an object: RT, TR, projection with fog
+    /// coefficients, one light (LLM row 0, LCM column 0), BK and FC.
+    fn object_geometry(
+        angles: (i32, i32, i32),
+        tz: i32,
+        h: u16,
+        (dqa, dqb): (i16, i32),
+        (light, color, ambient): ([i16; 3], [i16; 3], [i32; 3]),
+        far: [i32; 3],
+    ) -> Geometry {
+        let mut g = Geometry::new();
+        g.set_projection(&Projection {
+            offset_x: I16F16::from_num(160),
+            offset_y: I16F16::from_num(120),
+            h,
+            dqa: I8F8::from_bits(dqa),
+            dqb: I8F24::from_bits(dqb),
+            ..Projection::default()
+        });
+        g.set_rotation(&Matrix::rotation(angles.0, angles.1, angles.2));
+        g.set_translation(Translation { x: 0, y: 0, z: tz });
+        let zero = [0i16; 3];
+        g.set_light_matrix(&Matrix::from_bits([light, zero, zero]));
+        g.set_light_colors(&Matrix::from_bits([
+            [color[0], 0, 0],
+            [color[1], 0, 0],
+            [color[2], 0, 0],
+        ]));
+        g.set_background_color(ambient);
+        g.set_far_color(far);
+        g
+    }
+
+    /// A face with these corners, and the shared vertices it indexes, listed in another
+    /// order (last corner first) with an unused vertex in front.
+    fn indexed(
+        positions: [Vector3; 4],
+        normals: [Vector3; 4],
+        quad: bool,
+    ) -> (PreparedFace, Vec<SharedVertex>, [u32; 4]) {
+        let face = PreparedFace {
+            v: std::array::from_fn(|k| PreparedVertex {
+                position: positions[k],
+                normal: normals[k],
+                ..PreparedVertex::default()
+            }),
+            quad,
+        };
+        let mut vertices = vec![SharedVertex::default()];
+        vertices.extend((0..4).rev().map(|k| SharedVertex {
+            position: positions[k],
+            normal: normals[k],
+        }));
+        (face, vertices, [4, 3, 2, 1])
     }
 
     proptest! {
@@ -370,5 +588,109 @@ mod tests {
                 prop_assert_eq!(positions[k], (x, y));
             }
         }
+    }
+
+    proptest! {
+        /// A face from its vertices' own RTPS (one per shared vertex) gets the clip verdict,
+        /// NCLIP area, screen positions, screen Z, IR0, colours and OTZ that RTPT (+ RTPS),
+        /// NCLIP and NCCT/NCDT (+ NCCS/NCDS) or DPCS give it, with and without light and
+        /// fog; a vertex lit for one fade factor is lit again for another.
+        #[test]
+        fn shared_vertices_match_per_polygon(
+            positions in proptest::array::uniform4(vertex()),
+            normals in proptest::array::uniform4(normal()),
+            quad in any::<bool>(),
+            angles in (0i32..4096, 0i32..4096, 0i32..4096),
+            tz in -500i32..8000,
+            h in 100u16..1000,
+            fog in (50.0f64..3000.0, 100.0f64..6000.0),
+            lamp in (proptest::array::uniform3(-4096i16..=4096), proptest::array::uniform3(0i16..=4096), proptest::array::uniform3(0i32..=4096)),
+            far in proptest::array::uniform3(0i32..=0xFF0),
+            base in proptest::array::uniform3(any::<u8>()),
+            lighting in (any::<bool>(), any::<bool>()),
+            other_ir0 in 0i16..=0x1000,
+        ) {
+            let screen = (320, 240);
+            // DQA and DQB of a fog from `near` to `near + depth`, across the vertices' SZ.
+            let (near, depth) = fog;
+            let fog = crate::scene::Fog { color: [0; 3], near, far: near + depth };
+            let coefficients = fog.coefficients(h).unwrap_or((0, 0));
+            let mut g = object_geometry(angles, tz, h, coefficients, lamp, far);
+            let (face, vertices, indices) = indexed(positions, normals, quad);
+
+            let t = transform(&mut g, &face, false);
+            let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, quad, screen);
+            let color = light(&mut g, lighting, &face, base, t.ir0);
+            let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None)).ot_index;
+
+            let mut shared = Vec::new();
+            project_shared(&mut g, &vertices, &mut shared);
+            let s = transform_shared(&mut g, &shared, &indices, quad);
+            prop_assert_eq!(
+                format!("{:?}", classify(s.flag, s.area, s.xy, s.sz, s.ir0, quad, screen)),
+                format!("{verdict:?}")
+            );
+            prop_assert_eq!(s.area, t.area);
+            prop_assert_eq!(s.xy, t.xy);
+            prop_assert_eq!(s.sz, t.sz);
+            prop_assert_eq!(s.ir0, t.ir0);
+            let vertex_color = |g: &mut Geometry, shared: &mut Vec<SharedProjection>, ir0| {
+                light_shared(g, lighting, shared, &vertices, (&indices, quad), base, ir0)
+            };
+            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
+            prop_assert_eq!(emit(&mut g, &face, (s.xy, s.sz), color, (None, None)).ot_index, otz);
+            // Once more from the lit vertices, then after they were faded by another factor.
+            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
+            let other = I4F12::from_bits(other_ir0);
+            g.gte_mut().write_data(8, other_ir0 as i32 as u32);
+            let other_color = light(&mut g, lighting, &face, base, other);
+            prop_assert_eq!(vertex_color(&mut g, &mut shared, other), other_color);
+            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
+        }
+    }
+
+    /// RTPT runs the depth cue for its last vertex only, RTPS for every vertex
+    /// (docs/hardware/gte.md §5.7): with DQA = -500, DQB = 1.0, a vertex at SZ 300
+    /// (q = 256/300 in 1.16, D = 1000000h - 500 q < 0) saturates IR0 to 0 and sets FLAG bit
+    /// 12, one at SZ 1000 (D = 1000000h - 500 q, about 800000h) does not. A triangle whose
+    /// near vertex comes first carries bit 12 from its three RTPS but not from its RTPT, and
+    /// gets the same verdict, as the verdict reads no depth-cue bit.
+    #[test]
+    fn rtpt_depth_cues_its_last_vertex_only() {
+        let mut g = object_geometry(
+            (0, 0, 0),
+            0,
+            256,
+            (-500, 0x0100_0000),
+            ([0; 3], [0; 3], [0; 3]),
+            [0; 3],
+        );
+        let at = |x, y, z| Vector3 { x, y, z };
+        let positions = [
+            at(0, 0, 300),
+            at(400, 0, 1000),
+            at(0, 400, 1000),
+            at(0, 0, 0),
+        ];
+        let (face, vertices, indices) = indexed(positions, [Vector3::default(); 4], false);
+        let t = transform(&mut g, &face, false);
+        let mut shared = Vec::new();
+        project_shared(&mut g, &vertices, &mut shared);
+        let s = transform_shared(&mut g, &shared, &indices, false);
+        assert!(!t.flag.intersects(Flag::IR0_SATURATED), "{:?}", t.flag);
+        assert!(s.flag.intersects(Flag::IR0_SATURATED), "{:?}", s.flag);
+        // q = 256 * 65536 / 1000 = 16777 (within 3 by UNR): IR0 = (1000000h - 500 q) >> 12.
+        let expected = (0x0100_0000 - 500 * 16777) >> 12;
+        assert!(
+            (i32::from(t.ir0.to_bits()) - expected).abs() <= 1,
+            "{:?}",
+            t.ir0
+        );
+        assert_eq!(s.ir0, t.ir0);
+        let screen = (320, 240);
+        let a = classify(t.flag, t.area, t.xy, t.sz, t.ir0, false, screen);
+        let b = classify(s.flag, s.area, s.xy, s.sz, s.ir0, false, screen);
+        assert!(matches!(a, Verdict::Draw { .. }), "{a:?}");
+        assert_eq!(format!("{a:?}"), format!("{b:?}"));
     }
 }

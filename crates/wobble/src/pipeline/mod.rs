@@ -3,9 +3,10 @@
 //! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
 //! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
 //!
-//! One frame runs the stages in order: `gte_stage` (transform, cull, clip, light, depth;
-//! splitting polygons as `tessellate` and `clip` decide), `ot_stage` (GP0 packets linked into
-//! the ordering table), `gpu_stage` (the OT walk into the GPU, or the precise path).
+//! One frame runs the stages in order: `gte_stage` (transform each shared vertex once, then
+//! cull, clip, light and depth per polygon; splitting polygons as `tessellate` and `clip`
+//! decide), `ot_stage` (GP0 packets linked into the ordering table), `gpu_stage` (the OT
+//! walk into the GPU, or the precise path).
 
 mod clip;
 mod gpu_stage;
@@ -13,6 +14,8 @@ mod gte_stage;
 pub mod object;
 mod ot_stage;
 pub mod tessellate;
+#[cfg(test)]
+mod tests;
 mod trace;
 
 pub use object::{angle, object_rotation, object_transform, prepare};
@@ -26,8 +29,8 @@ use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
 use gte::DivideMode;
 use gte::typed::Geometry;
-use gte_stage::ProjectedFace;
-use object::PreparedObject;
+use gte_stage::{ProjectedFace, SharedProjection};
+use object::{PreparedObject, prepare_indexed};
 use std::fmt;
 use std::time::{Duration, Instant};
 use tessellate::{MAX_LEVEL, SplitStack};
@@ -259,6 +262,11 @@ pub struct Renderer {
     precise_vertices: Vec<[SubpixelVertex; 4]>,
     /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
     trace: Option<Box<trace::TraceSink>>,
+    /// The current object's vertices after RTPS, and their colours once lit.
+    shared: Vec<SharedProjection>,
+    /// Every face through its own RTPT/RTPS (the path split faces take), no vertex shared:
+    /// the reference the shared-vertex path is tested against.
+    per_polygon: bool,
 }
 
 impl Renderer {
@@ -319,8 +327,9 @@ impl Renderer {
                 .tessellation
                 .unwrap_or(o.tessellation)
                 .min(MAX_LEVEL);
-            let faces = prepare(&scene, i);
-            capacity = faces
+            let mesh = prepare_indexed(&scene, i);
+            capacity = mesh
+                .faces
                 .len()
                 .saturating_mul(1 << (2 * level))
                 .saturating_add(capacity)
@@ -330,7 +339,9 @@ impl Renderer {
                 Some((*placements.get(t)?, depth))
             });
             objects.push(PreparedObject {
-                faces,
+                faces: mesh.faces,
+                vertices: mesh.vertices,
+                indices: mesh.indices,
                 level,
                 texture,
             });
@@ -352,6 +363,7 @@ impl Renderer {
             height,
             color_24bit: false,
         };
+        let most_vertices = objects.iter().map(|o| o.vertices.len()).max().unwrap_or(0);
         let mut geometry = Geometry::new();
         geometry
             .set_divide_mode(options.divide_mode)
@@ -370,6 +382,8 @@ impl Renderer {
             display,
             precise_vertices: Vec::new(),
             trace: None,
+            shared: Vec::with_capacity(most_vertices),
+            per_polygon: false,
         })
     }
 

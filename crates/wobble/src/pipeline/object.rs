@@ -5,13 +5,34 @@ use super::tessellate::{PreparedFace, PreparedVertex, UV_FRACTION_BITS};
 use crate::scene::vram_alloc::Placement;
 use crate::scene::{Object, Scene};
 use gte::typed::{Matrix, Translation, Vector3};
+use std::collections::HashMap;
 
 /// An object ready to draw: faces in GTE units with texel coordinates.
 #[derive(Clone, Debug)]
 pub(super) struct PreparedObject {
     pub(super) faces: Vec<PreparedFace>,
+    /// The object's distinct vertices (position and normal), each projected once a frame.
+    pub(super) vertices: Vec<SharedVertex>,
+    /// For each of `faces`, its vertices' indices into `vertices` (the fourth 0 for a
+    /// triangle).
+    pub(super) indices: Vec<[u32; 4]>,
     pub(super) level: u8,
     pub(super) texture: Option<(Placement, gpu::TextureDepth)>,
+}
+
+/// What the GTE reads of a vertex shared by faces: the 16-bit position (RTPS) and the
+/// 1.3.12 normal (NCCS/NCDS). Texture coordinates stay with each face ([`PreparedFace`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub(super) struct SharedVertex {
+    pub(super) position: Vector3,
+    pub(super) normal: Vector3,
+}
+
+/// An object's faces with their shared vertices (see [`PreparedObject`]).
+pub(super) struct PreparedMesh {
+    pub(super) faces: Vec<PreparedFace>,
+    pub(super) vertices: Vec<SharedVertex>,
+    pub(super) indices: Vec<[u32; 4]>,
 }
 
 /// Degrees to 1/4096 turn.
@@ -55,12 +76,24 @@ fn apply(m: &Matrix, v: [f64; 3]) -> [f64; 3] {
 /// whole texture repeats to start in the first repeat, then scaled to 0..size-1 texels and
 /// clamped to 255) in 8.8 fixed point.
 pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
+    prepare_indexed(scene, index).faces
+}
+
+/// [`prepare`], and the object's distinct vertices with each face's indices into them:
+/// mesh vertices that come out with the same position and normal are one vertex.
+pub(super) fn prepare_indexed(scene: &Scene, index: usize) -> PreparedMesh {
+    let mut out = PreparedMesh {
+        faces: Vec::new(),
+        vertices: Vec::new(),
+        indices: Vec::new(),
+    };
     let Some(o) = scene.objects.get(index) else {
-        return Vec::new();
+        return out;
     };
     let Some(mesh) = scene.meshes.get(o.mesh).map(|m| &m.mesh) else {
-        return Vec::new();
+        return out;
     };
+    let mut shared: HashMap<SharedVertex, u32> = HashMap::new();
     let size = o
         .texture
         .and_then(|t| scene.textures.get(t))
@@ -68,7 +101,8 @@ pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
             (t.texture.width as f64 - 1.0, t.texture.height as f64 - 1.0)
         });
     let uv_scale = f64::from(1u32 << UV_FRACTION_BITS);
-    let mut faces = Vec::with_capacity(mesh.faces.len());
+    out.faces.reserve(mesh.faces.len());
+    out.indices.reserve(mesh.faces.len());
     for f in &mesh.faces {
         let count = if f.quad { 4 } else { 3 };
         let mut vs = [None; 4];
@@ -93,7 +127,8 @@ pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
             quad: f.quad,
             ..Default::default()
         };
-        for (slot, v) in face.v.iter_mut().zip(vs) {
+        let mut indices = [0u32; 4];
+        for ((slot, v), index) in face.v.iter_mut().zip(vs).zip(&mut indices) {
             let texel = |c: f64, min: f64, size: f64| {
                 (((c - min) * size).clamp(0.0, 255.0) * uv_scale).round() as u16
             };
@@ -102,10 +137,19 @@ pub fn prepare(scene: &Scene, index: usize) -> Vec<PreparedFace> {
                 normal: normal(v.normal),
                 uv: [texel(v.uv[0], min_u, size.0), texel(v.uv[1], min_v, size.1)],
             };
+            let key = SharedVertex {
+                position: slot.position,
+                normal: slot.normal,
+            };
+            *index = *shared.entry(key).or_insert_with(|| {
+                out.vertices.push(key);
+                (out.vertices.len() - 1) as u32
+            });
         }
-        faces.push(face);
+        out.faces.push(face);
+        out.indices.push(indices);
     }
-    faces
+    out
 }
 
 /// The object's rotation in degrees at `frame`.
