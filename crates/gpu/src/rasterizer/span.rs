@@ -14,6 +14,10 @@ use wide::{i16x8, i32x8, u16x8, u32x8};
 /// Pixels per group.
 const LANES: usize = 8;
 
+/// Spans shorter than this stay pixel by pixel: a group's fixed work costs more than a
+/// few pixels one at a time.
+pub(super) const MIN_PIXELS: i32 = 4;
+
 /// The dither offsets of eight consecutive pixels starting at a pixel with `x & 3 == c` on a
 /// line with `y & 3 == r`, indexed `[r][c]` (docs/hardware/gpu.md §6).
 static DITHER_LANES: [[[i16; LANES]; 4]; 4] = dither_lanes();
@@ -103,11 +107,13 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
         } else {
             flat
         };
+        let n = ((x_end - x) as usize).min(LANES);
         let mut texel = [0u16; LANES];
         if textured {
+            // Lanes past the span's end are not drawn and need no texel.
             let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
-            for k in 0..LANES {
-                texel[k] = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
+            for (k, t) in texel.iter_mut().enumerate().take(n) {
+                *t = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
             }
         }
         let t = i16x8::new(texel.map(|t| t as i16));
@@ -130,7 +136,6 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
                 | mask_or
         };
         let out = cast::<i16x8, u16x8>(out);
-        let n = ((x_end - x) as usize).min(LANES);
         if let Some(dst) = vram.get_mut(start..start + n) {
             if let Ok(dst) = <&mut [u16; LANES]>::try_from(&mut *dst) {
                 *dst = if textured {

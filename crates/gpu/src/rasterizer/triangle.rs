@@ -255,7 +255,7 @@ pub(super) fn draw<
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
                 if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
                     super::fill_span(vram, row, x_start, x_end, flat_color, env.line);
-                } else if groups {
+                } else if groups && x_end - x_start >= span::MIN_PIXELS {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
                     let acc = core::array::from_fn(|i| {
