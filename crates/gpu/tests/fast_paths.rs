@@ -423,3 +423,115 @@ fn blend_modes_over_every_background() {
         }
     }
 }
+
+/// The 4-bit CLUT path shaded under one colour, for every 8-bit colour value and every 5-bit
+/// texel value on each channel (§6 "Modulation", §7). Two CLUTs of 16 entries hold red
+/// 0-31, green 31-0 and blue 0-31 (even in the first, odd in the second), some with bit 15;
+/// row c is drawn with colour (c, 255 - c, 37c mod 256) as a modulated 4-bit sprite per CLUT
+/// (never dithered, §5) and as a flat-modulated 4-bit quad per CLUT (dithered on odd rows
+/// with E1h bit 9, §6), whose UV comes from the §3.6 model.
+#[test]
+fn clut4_modulation_every_texel_and_colour() {
+    let (mut g, _) = gpu_with_background(0x4B1D);
+    // 4-bit page 8 (x 512), row 0: u = 0..15 hold indices 0..15.
+    for (k, word) in [0x3210u16, 0x7654, 0xBA98, 0xFEDC].into_iter().enumerate() {
+        g.vram_mut().set_pixel(512 + k, 0, word);
+    }
+    let cluts = [(512usize, 300usize), (528, 300)];
+    for (n, &(cx, cy)) in cluts.iter().enumerate() {
+        for i in 0..16u16 {
+            let r = i + 16 * n as u16;
+            let t = r | (31 - r) << 5 | (2 * i + n as u16) << 10 | ((i % 3 == 0) as u16) << 15;
+            g.vram_mut().set_pixel(cx + i as usize, cy, t);
+        }
+    }
+    let background = g.vram().clone();
+    let tex = |n: usize| Texture {
+        page_x: 8,
+        page_y: 0,
+        depth: 0,
+        clut: (cluts[n].0 / 16) as u32 | (cluts[n].1 as u32) << 6,
+        window: [0; 4],
+    };
+    g.gp0_words(&[
+        0xE300_0000,
+        0xE400_0000 | 511 | 511 << 10,
+        0xE500_0000,
+        0xE200_0000,
+    ]);
+    let mut expected = background.clone();
+    for c in 0..256u32 {
+        let rgb = [c, 255 - c, (37 * c) & 0xFF];
+        let color = rgb[0] | rgb[1] << 8 | rgb[2] << 16;
+        let dither = c & 1 == 1;
+        let y = c as i32;
+        for n in 0..2 {
+            let t = tex(n);
+            g.gp0(0xE100_0000 | t.page_bits() | (dither as u32) << 9);
+            // Sprite 64h, 16x1 at x = 16n.
+            let x0 = 16 * n as i32;
+            g.gp0_words(&[0x6400_0000 | color, xy(x0, y), t.clut << 16, 1 << 16 | 16]);
+            for i in 0..16 {
+                let texel = t.texel(&background, i as u32, 0);
+                let f = pixel::modulate(texel, rgb, (x0 + i) as i64, y as i64, false);
+                let m = Mask {
+                    set: false,
+                    check: false,
+                };
+                pixel::plot(
+                    &mut expected,
+                    ((x0 + i) as i64, y as i64),
+                    f,
+                    texel & 0x8000 != 0,
+                    None,
+                    m,
+                );
+            }
+            // Flat-modulated quad 2Ch over x 32 + 16n .. +16, rows y..y+1 (the bottom row
+            // is not drawn, §3.5), u 0..16, v 0.
+            let x0 = 32 + 16 * n as i32;
+            let corners = [
+                (x0, y, 0),
+                (x0 + 16, y, 16),
+                (x0, y + 1, 0),
+                (x0 + 16, y + 1, 16),
+            ];
+            let mut words = vec![0x2C00_0000 | color];
+            for (k, &(x, vy, u)) in corners.iter().enumerate() {
+                let attr = match k {
+                    0 => t.clut << 16,
+                    1 => t.page_bits() << 16,
+                    _ => 0,
+                };
+                words.extend([xy(x, vy), u as u32 | attr]);
+            }
+            g.gp0_words(&words);
+            let env = |(x, vy, u): (i32, i32, i64)| model::V {
+                x: x as i64,
+                y: vy as i64,
+                a: [0, 0, 0, u, 0],
+            };
+            for tri in halves(true) {
+                let v = tri.map(|k| env(corners[k]));
+                for p in model::triangle(v, (0, 0, 511, 511)) {
+                    let texel = t.texel(&background, p.attr[3], p.attr[4]);
+                    if texel == 0 {
+                        continue;
+                    }
+                    let f = pixel::modulate(texel, rgb, p.x, p.y, dither);
+                    let m = Mask {
+                        set: false,
+                        check: false,
+                    };
+                    pixel::plot(&mut expected, (p.x, p.y), f, texel & 0x8000 != 0, None, m);
+                }
+            }
+        }
+    }
+    let vram = g.vram();
+    assert!(
+        *vram == expected,
+        "{}",
+        difference(vram, &expected, &background)
+    );
+}
