@@ -3,6 +3,8 @@
 //! (plain span stores), flat-modulated and raw textured polygons (the pre-shaded 4-bit CLUT
 //! table), rectangles of every size and texture depth, each with the four semi-transparency
 //! modes and both mask bits, random drawing areas and offsets. The whole VRAM is compared.
+//! Two exhaustive cases follow: every background halfword under each blend mode, and every
+//! colour byte times every 5-bit texel value through the 4-bit CLUT path.
 //!
 //! VRAM starts as random data (a seeded generator: about 1/8 of the halfwords 0000h, 1/16
 //! 8000h, the rest uniform, so backgrounds, texels and CLUT entries include transparent,
@@ -21,7 +23,7 @@ mod pixel;
 
 use pixel::{Mask, Texture};
 
-/// A 16-bit GP0 vertex word from a coordinate pair (docs/hardware/gpu.md §2).
+/// A GP0 vertex word: X in bits 0-10, Y in bits 16-26 (docs/hardware/gpu.md §2).
 fn xy(x: i32, y: i32) -> u32 {
     ((y as u32 & 0x7FF) << 16) | (x as u32 & 0x7FF)
 }
@@ -194,7 +196,7 @@ fn color() -> impl Strategy<Value = [u8; 3]> {
     prop_oneof![1 => Just([0x80u8; 3]), 3 => any::<[u8; 3]>()]
 }
 
-/// The triangles of a polygon with `n` vertices: (v0, v1, v2), then (v1, v2, v3) (§3.1).
+/// The triangles a triangle or a quad is drawn as: (v0, v1, v2), then (v1, v2, v3) (§3.1).
 fn halves(quad: bool) -> &'static [[usize; 3]] {
     if quad {
         &[[0, 1, 2], [1, 2, 3]]
