@@ -1,0 +1,539 @@
+//! The rasterizer's specialised routines held bit for bit to per-pixel models of the fact
+//! sheet (docs/hardware/gpu.md §2-§7) on random primitives: flat untextured polygons
+//! (plain span stores), flat-modulated and raw textured polygons (the pre-shaded 4-bit CLUT
+//! table), rectangles of every size and texture depth, each with the four semi-transparency
+//! modes and both mask bits, random drawing areas and offsets. The whole VRAM is compared.
+//! Two exhaustive cases follow: every background halfword under each blend mode, and every
+//! colour byte times every 5-bit texel value through the 4-bit CLUT path.
+//!
+//! VRAM starts as random data (a seeded generator: about 1/8 of the halfwords 0000h, 1/16
+//! 8000h, the rest uniform, so backgrounds, texels and CLUT entries include transparent,
+//! opaque-black and bit-15 values). Primitives draw into x 0-511 (the drawing area never
+//! extends further right) and textures and CLUTs are placed in x 512-1023 without wrapping
+//! back, so every texel the model reads is the value before drawing: the model does not
+//! need the order in which the hardware reads and writes.
+
+use gpu::{Gpu, Vram};
+use proptest::prelude::*;
+
+#[path = "support/model.rs"]
+mod model;
+#[path = "support/pixel.rs"]
+mod pixel;
+
+use pixel::{Mask, Texture};
+
+/// A GP0 vertex word: X in bits 0-10, Y in bits 16-26 (docs/hardware/gpu.md §2).
+fn xy(x: i32, y: i32) -> u32 {
+    ((y as u32 & 0x7FF) << 16) | (x as u32 & 0x7FF)
+}
+
+/// A signed 11-bit value (§2, §3.5, §5).
+fn sext11(v: i64) -> i64 {
+    ((v & 0x7FF) ^ 0x400) - 0x400
+}
+
+fn rgb_word(c: [u8; 3]) -> u32 {
+    c[0] as u32 | (c[1] as u32) << 8 | (c[2] as u32) << 16
+}
+
+fn rgb8(c: [u8; 3]) -> [u32; 3] {
+    c.map(|c| c as u32)
+}
+
+/// The drawing environment of one case: area corners (inclusive), offset, E6h, E1h dither
+/// and the seed of the VRAM contents.
+#[derive(Clone, Debug)]
+struct Env {
+    area: (u32, u32, u32, u32),
+    offset: (i32, i32),
+    mask: Mask,
+    dither: bool,
+    seed: u64,
+}
+
+impl Env {
+    /// E3h, E4h, E5h and E6h (§2).
+    fn words(&self) -> [u32; 4] {
+        let a = self.area;
+        [
+            0xE300_0000 | a.0 | a.1 << 10,
+            0xE400_0000 | a.2 | a.3 << 10,
+            0xE500_0000 | (self.offset.0 as u32 & 0x7FF) | (self.offset.1 as u32 & 0x7FF) << 11,
+            self.mask.e6(),
+        ]
+    }
+
+    fn inside(&self, x: i64, y: i64) -> bool {
+        let a = self.area;
+        x >= a.0 as i64 && x <= a.2 as i64 && y >= a.1 as i64 && y <= a.3 as i64
+    }
+
+    fn clip(&self) -> (i64, i64, i64, i64) {
+        let a = self.area;
+        (a.0 as i64, a.1 as i64, a.2 as i64, a.3 as i64)
+    }
+
+    /// A vertex as the rasterizer places it: command coordinate (11-bit signed) plus the
+    /// drawing offset; `model::triangle` then wraps the sum to 11 bits (§3.5).
+    fn vertex(&self, x: i32, y: i32, a: [i64; 5]) -> model::V {
+        model::V {
+            x: sext11(x as i64) + self.offset.0 as i64,
+            y: sext11(y as i64) + self.offset.1 as i64,
+            a,
+        }
+    }
+}
+
+/// A right or bottom drawing-area corner: mostly past the left/top corner (0-63), sometimes
+/// before it, which leaves an empty area.
+fn corner() -> impl Strategy<Value = u32> {
+    prop_oneof![6 => 64u32..512, 1 => 0u32..512]
+}
+
+fn env() -> impl Strategy<Value = Env> {
+    let offset = prop_oneof![5 => (-32i32..32, -32i32..32), 1 => (-1024i32..1024, -1024i32..1024)];
+    (
+        (0u32..64, 0u32..64, corner(), corner()),
+        offset,
+        any::<(bool, bool, bool)>(),
+        any::<u64>(),
+    )
+        .prop_map(|(a, offset, (set, check, dither), seed)| Env {
+            area: a,
+            offset,
+            mask: Mask { set, check },
+            dither,
+            seed,
+        })
+}
+
+/// A GPU whose VRAM holds the case's random data, and a copy of that VRAM.
+fn gpu_with_background(seed: u64) -> (Gpu, Vram) {
+    let mut g = Gpu::new();
+    let mut state = seed;
+    for p in g.vram_mut().as_mut_slice() {
+        // SplitMix64.
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        *p = match z >> 60 {
+            0 | 1 => 0x0000,
+            2 => 0x8000,
+            _ => z as u16,
+        };
+    }
+    let background = g.vram().clone();
+    (g, background)
+}
+
+/// The first pixel where the two VRAMs differ, for the failure message.
+fn difference(got: &Vram, want: &Vram, background: &Vram) -> String {
+    let first = got
+        .as_slice()
+        .iter()
+        .zip(want.as_slice())
+        .position(|(a, b)| a != b);
+    let count = got
+        .as_slice()
+        .iter()
+        .zip(want.as_slice())
+        .filter(|(a, b)| a != b)
+        .count();
+    match first {
+        Some(i) => format!(
+            "{count} pixels differ; first ({}, {}): got {:04X}, model {:04X}, before {:04X}",
+            i % 1024,
+            i / 1024,
+            got.as_slice()[i],
+            want.as_slice()[i],
+            background.as_slice()[i]
+        ),
+        None => String::new(),
+    }
+}
+
+/// Mostly near the drawing area, sometimes far enough to hit the size drop and the 11-bit
+/// wrap.
+fn coordinate() -> impl Strategy<Value = i32> {
+    prop_oneof![9 => -40i32..400, 1 => -1100i32..1100]
+}
+
+/// A rectangle's top-left corner: mostly where most of the rectangle lands in the drawing
+/// area, sometimes anywhere in (and beyond) the 11-bit range.
+fn corner_coordinate() -> impl Strategy<Value = i32> {
+    prop_oneof![9 => 10i32..250, 1 => -1100i32..1100]
+}
+
+/// A texture placed in x 512-1023 with nothing wrapping past x 1023 (see the file comment):
+/// page X 8-15 (4-bit), 8-14 (8-bit), 8-12 (15-bit: 256 halfwords); CLUT X 512-1008
+/// (4-bit, 16 entries) or 512-768 (8-bit, 256 entries), any CLUT row.
+fn texture() -> impl Strategy<Value = Texture> {
+    let depth = prop_oneof![5 => Just(0u32), 2 => Just(1u32), 1 => Just(2u32), 1 => Just(3u32)];
+    let window = prop_oneof![1 => Just([0u32; 4]), 2 => [0u32..32, 0u32..32, 0u32..32, 0u32..32]];
+    (depth, 8u32..16, 0u32..2, 0u32..32, 0u32..512, window).prop_map(
+        |(depth, page_x, page_y, clut_x, clut_y, window)| {
+            let (max_page, clut_span) = match depth {
+                0 => (15, 32),
+                1 => (14, 17),
+                _ => (12, 32),
+            };
+            Texture {
+                page_x: page_x.min(max_page),
+                page_y,
+                depth,
+                clut: (32 + clut_x % clut_span) | clut_y << 6,
+                window,
+            }
+        },
+    )
+}
+
+/// A modulation colour: often 808080h (neutral), otherwise any.
+fn color() -> impl Strategy<Value = [u8; 3]> {
+    prop_oneof![1 => Just([0x80u8; 3]), 3 => any::<[u8; 3]>()]
+}
+
+/// The triangles a triangle or a quad is drawn as: (v0, v1, v2), then (v1, v2, v3) (§3.1).
+fn halves(quad: bool) -> &'static [[usize; 3]] {
+    if quad {
+        &[[0, 1, 2], [1, 2, 3]]
+    } else {
+        &[[0, 1, 2]]
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    /// Flat untextured triangles and quads (GP0 20h/22h/28h/2Ah): every covered pixel gets
+    /// c8 >> 3 per channel, never dithered even with E1h bit 9 (§6), blended with the E1h
+    /// mode when semi-transparent, under the E6h mask rules (§6), coverage from the §3 model.
+    #[test]
+    fn flat_polygons_match_model(
+        pts in prop::collection::vec((coordinate(), coordinate()), 4),
+        quad in any::<bool>(),
+        rgb in any::<[u8; 3]>(),
+        semi in any::<bool>(),
+        mode in 0u32..4,
+        page in 0u32..0x200,
+        env in env(),
+    ) {
+        let (mut g, background) = gpu_with_background(env.seed);
+        // E1h: random page/depth bits (unused), the blend mode, dither.
+        g.gp0(0xE100_0000 | (page & !0x60) | mode << 5 | (env.dither as u32) << 9);
+        g.gp0_words(&env.words());
+        let cmd = 0x20 | (semi as u32) << 1 | (quad as u32) << 3;
+        let mut words = vec![cmd << 24 | rgb_word(rgb)];
+        let n = if quad { 4 } else { 3 };
+        words.extend(pts[..n].iter().map(|p| xy(p.0, p.1)));
+        g.gp0_words(&words);
+
+        let mut expected = background.clone();
+        let c = rgb8(rgb).map(|c| c as i64);
+        let color = pixel::flat(rgb8(rgb));
+        for tri in halves(quad) {
+            let v = tri.map(|i| env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0]));
+            for p in model::triangle(v, env.clip()) {
+                pixel::plot(&mut expected, (p.x, p.y), color, false, semi.then_some(mode), env.mask);
+            }
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+
+    /// Flat textured triangles and quads, modulated or raw, opaque or semi-transparent
+    /// (GP0 24h-27h, 2Ch-2Fh), mostly 4-bit: texel from §7 (window, page, CLUT; 0000h not
+    /// drawn), modulated per §6 and dithered when E1h bit 9 is set unless raw (§6 "When
+    /// dithering applies"), blended with the texpage attribute's mode only where the texel
+    /// has bit 15, which is also written (§6). UV from the §3.6 model.
+    #[test]
+    fn textured_polygons_match_model(
+        pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 2]>()), 4),
+        quad in any::<bool>(),
+        (rgb, raw, semi) in (color(), any::<bool>(), any::<bool>()),
+        (mode, e1_mode) in (0u32..4, 0u32..4),
+        tex in texture(),
+        env in env(),
+    ) {
+        let (mut g, background) = gpu_with_background(env.seed);
+        // E1h with another blend mode and page: the polygon's texpage replaces bits 0-8 (§2).
+        g.gp0(0xE100_0000 | e1_mode << 5 | (env.dither as u32) << 9 | 0x1F);
+        g.gp0(tex.e2());
+        g.gp0_words(&env.words());
+        let cmd = 0x24 | raw as u32 | (semi as u32) << 1 | (quad as u32) << 3;
+        let texpage = tex.page_bits() | mode << 5;
+        let n = if quad { 4 } else { 3 };
+        let mut words = vec![cmd << 24 | rgb_word(rgb)];
+        for (i, p) in pts[..n].iter().enumerate() {
+            let attr = match i {
+                0 => tex.clut << 16,
+                1 => texpage << 16,
+                _ => 0,
+            };
+            words.push(xy(p.0, p.1));
+            words.push(p.2[0] as u32 | (p.2[1] as u32) << 8 | attr);
+        }
+        g.gp0_words(&words);
+
+        let mut expected = background.clone();
+        let c = rgb8(rgb);
+        for tri in halves(quad) {
+            let v = tri.map(|i| {
+                let p = &pts[i];
+                env.vertex(p.0, p.1, [c[0] as i64, c[1] as i64, c[2] as i64, p.2[0] as i64, p.2[1] as i64])
+            });
+            for p in model::triangle(v, env.clip()) {
+                let t = tex.texel(&background, p.attr[3], p.attr[4]);
+                if t == 0 {
+                    continue;
+                }
+                let color = if raw { t } else { pixel::modulate(t, c, p.x, p.y, env.dither) };
+                let bit15 = t & 0x8000 != 0;
+                let blend = (semi && bit15).then_some(mode);
+                pixel::plot(&mut expected, (p.x, p.y), color, bit15, blend, env.mask);
+            }
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+
+    /// Rectangles (GP0 60h-7Fh): variable size (W & 3FFh by H & 1FFh), 1x1, 8x8, 16x16;
+    /// untextured or 4/8/15-bit textured, raw or modulated, opaque or semi-transparent, with
+    /// the E1h X/Y flips and the E2h window. Pixel (x0 + i, y0 + j) inside the drawing area
+    /// samples u = u0 + i (X flip: (u0 | 1) - i), v = v0 + j (Y flip: v0 - j), wrapping at
+    /// 256, then the window (§5, §7); never dithered (§5); blending and mask per §6.
+    #[test]
+    fn rectangles_match_model(
+        pos in (corner_coordinate(), corner_coordinate()),
+        (size, w, h) in (0u32..4, prop_oneof![3 => 0u32..40, 1 => 0u32..0x800], prop_oneof![3 => 0u32..40, 1 => 0u32..0x400]),
+        (textured, raw, semi, mode) in (prop_oneof![1 => Just(false), 3 => Just(true)], any::<bool>(), any::<bool>(), 0u32..4),
+        (rgb, uv, flips) in (color(), any::<[u8; 2]>(), any::<(bool, bool)>()),
+        tex in texture(),
+        env in env(),
+    ) {
+        let raw = raw && textured;
+        let (mut g, background) = gpu_with_background(env.seed);
+        let (xflip, yflip) = flips;
+        g.gp0(
+            0xE100_0000
+                | tex.page_bits()
+                | mode << 5
+                | (env.dither as u32) << 9
+                | (xflip as u32) << 12
+                | (yflip as u32) << 13,
+        );
+        g.gp0(tex.e2());
+        g.gp0_words(&env.words());
+        let cmd = 0x60 | size << 3 | (textured as u32) << 2 | (semi as u32) << 1 | raw as u32;
+        let mut words = vec![cmd << 24 | rgb_word(rgb), xy(pos.0, pos.1)];
+        if textured {
+            words.push(uv[0] as u32 | (uv[1] as u32) << 8 | tex.clut << 16);
+        }
+        if size == 0 {
+            words.push(h << 16 | w);
+        }
+        g.gp0_words(&words);
+
+        let mut expected = background.clone();
+        let (width, height) = match size {
+            0 => ((w & 0x3FF) as i64, (h & 0x1FF) as i64),
+            1 => (1, 1),
+            2 => (8, 8),
+            _ => (16, 16),
+        };
+        // §5: position = vertex + offset, wrapped to signed 11 bits.
+        let x0 = sext11(sext11(pos.0 as i64) + env.offset.0 as i64);
+        let y0 = sext11(sext11(pos.1 as i64) + env.offset.1 as i64);
+        let c = rgb8(rgb);
+        let (u0, v0) = (uv[0] as i64, uv[1] as i64);
+        for j in 0..height {
+            for i in 0..width {
+                let (x, y) = (x0 + i, y0 + j);
+                if !env.inside(x, y) {
+                    continue;
+                }
+                if !textured {
+                    pixel::plot(&mut expected, (x, y), pixel::flat(c), false, semi.then_some(mode), env.mask);
+                    continue;
+                }
+                let u = if xflip { (u0 | 1) - i } else { u0 + i } & 0xFF;
+                let v = if yflip { v0 - j } else { v0 + j } & 0xFF;
+                let t = tex.texel(&background, u as u32, v as u32);
+                if t == 0 {
+                    continue;
+                }
+                let color = if raw { t } else { pixel::modulate(t, c, x, y, false) };
+                let bit15 = t & 0x8000 != 0;
+                let blend = (semi && bit15).then_some(mode);
+                pixel::plot(&mut expected, (x, y), color, bit15, blend, env.mask);
+            }
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+}
+
+/// Every background value under every blend mode (§6 "Semi-transparency"), so a carry or
+/// borrow between packed channels cannot hide: rows 0-63 hold the 65,536 halfwords (bit 15
+/// included) and two 512x64 semi-transparent flat rectangles cover them with a foreground
+/// whose 5-bit channels take the edge values 0, 1, 16, 30, 31 in every combination; the
+/// mask bits alternate between the four E6h settings. The whole VRAM is compared.
+#[test]
+fn blend_modes_over_every_background() {
+    let levels = [0u32, 1, 16, 30, 31];
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE400_0000 | 1023 | 511 << 10, 0xE500_0000]);
+    let mut case = 0u32;
+    for mode in 0..4u32 {
+        for r in levels {
+            for gr in levels {
+                for b in levels {
+                    let mask = Mask {
+                        set: case & 1 != 0,
+                        check: case & 2 != 0,
+                    };
+                    case += 1;
+                    for (i, p) in g.vram_mut().as_mut_slice()[..65536].iter_mut().enumerate() {
+                        *p = i as u16;
+                    }
+                    let background = g.vram().clone();
+                    let rgb = [r << 3, gr << 3, b << 3];
+                    let color = rgb[0] | rgb[1] << 8 | rgb[2] << 16;
+                    g.gp0(0xE100_0000 | mode << 5);
+                    g.gp0(mask.e6());
+                    for x in [0, 512] {
+                        g.gp0_words(&[0x6200_0000 | color, xy(x, 0), 64 << 16 | 512]);
+                    }
+                    let mut expected = background.clone();
+                    let f = pixel::flat(rgb);
+                    for y in 0..64 {
+                        for x in 0..1024 {
+                            pixel::plot(&mut expected, (x, y), f, false, Some(mode), mask);
+                        }
+                    }
+                    let vram = g.vram();
+                    assert!(
+                        *vram == expected,
+                        "mode {mode}, F ({r}, {gr}, {b}), {mask:?}: {}",
+                        difference(vram, &expected, &background)
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// The 4-bit CLUT path shaded under one colour, for every 8-bit colour value and every 5-bit
+/// texel value on each channel (§6 "Modulation", §7). Two CLUTs of 16 entries hold red
+/// 0-31, green 31-0 and blue 0-31 (even in the first, odd in the second), some with bit 15;
+/// row c is drawn with colour (c, 255 - c, 37c mod 256) as a modulated 4-bit sprite per CLUT
+/// (never dithered, §5) and as a flat-modulated 4-bit quad per CLUT (dithered on odd rows
+/// with E1h bit 9, §6), whose UV comes from the §3.6 model.
+#[test]
+fn clut4_modulation_every_texel_and_colour() {
+    let (mut g, _) = gpu_with_background(0x4B1D);
+    // 4-bit page 8 (x 512), row 0: u = 0..15 hold indices 0..15.
+    for (k, word) in [0x3210u16, 0x7654, 0xBA98, 0xFEDC].into_iter().enumerate() {
+        g.vram_mut().set_pixel(512 + k, 0, word);
+    }
+    let cluts = [(512usize, 300usize), (528, 300)];
+    for (n, &(cx, cy)) in cluts.iter().enumerate() {
+        for i in 0..16u16 {
+            let r = i + 16 * n as u16;
+            let t = r | (31 - r) << 5 | (2 * i + n as u16) << 10 | ((i % 3 == 0) as u16) << 15;
+            g.vram_mut().set_pixel(cx + i as usize, cy, t);
+        }
+    }
+    let background = g.vram().clone();
+    let tex = |n: usize| Texture {
+        page_x: 8,
+        page_y: 0,
+        depth: 0,
+        clut: (cluts[n].0 / 16) as u32 | (cluts[n].1 as u32) << 6,
+        window: [0; 4],
+    };
+    g.gp0_words(&[
+        0xE300_0000,
+        0xE400_0000 | 511 | 511 << 10,
+        0xE500_0000,
+        0xE200_0000,
+    ]);
+    let mut expected = background.clone();
+    for c in 0..256u32 {
+        let rgb = [c, 255 - c, (37 * c) & 0xFF];
+        let color = rgb[0] | rgb[1] << 8 | rgb[2] << 16;
+        let dither = c & 1 == 1;
+        let y = c as i32;
+        for n in 0..2 {
+            let t = tex(n);
+            g.gp0(0xE100_0000 | t.page_bits() | (dither as u32) << 9);
+            // Sprite 64h, 16x1 at x = 16n.
+            let x0 = 16 * n as i32;
+            g.gp0_words(&[0x6400_0000 | color, xy(x0, y), t.clut << 16, 1 << 16 | 16]);
+            for i in 0..16 {
+                let texel = t.texel(&background, i as u32, 0);
+                let f = pixel::modulate(texel, rgb, (x0 + i) as i64, y as i64, false);
+                let m = Mask {
+                    set: false,
+                    check: false,
+                };
+                pixel::plot(
+                    &mut expected,
+                    ((x0 + i) as i64, y as i64),
+                    f,
+                    texel & 0x8000 != 0,
+                    None,
+                    m,
+                );
+            }
+            // Flat-modulated quad 2Ch over x 32 + 16n .. +16, rows y..y+1 (the bottom row
+            // is not drawn, §3.5), u 0..16, v 0.
+            let x0 = 32 + 16 * n as i32;
+            let corners = [
+                (x0, y, 0),
+                (x0 + 16, y, 16),
+                (x0, y + 1, 0),
+                (x0 + 16, y + 1, 16),
+            ];
+            let mut words = vec![0x2C00_0000 | color];
+            for (k, &(x, vy, u)) in corners.iter().enumerate() {
+                let attr = match k {
+                    0 => t.clut << 16,
+                    1 => t.page_bits() << 16,
+                    _ => 0,
+                };
+                words.extend([xy(x, vy), u as u32 | attr]);
+            }
+            g.gp0_words(&words);
+            let env = |(x, vy, u): (i32, i32, i64)| model::V {
+                x: x as i64,
+                y: vy as i64,
+                a: [0, 0, 0, u, 0],
+            };
+            for tri in halves(true) {
+                let v = tri.map(|k| env(corners[k]));
+                for p in model::triangle(v, (0, 0, 511, 511)) {
+                    let texel = t.texel(&background, p.attr[3], p.attr[4]);
+                    if texel == 0 {
+                        continue;
+                    }
+                    let f = pixel::modulate(texel, rgb, p.x, p.y, dither);
+                    let m = Mask {
+                        set: false,
+                        check: false,
+                    };
+                    pixel::plot(&mut expected, (p.x, p.y), f, texel & 0x8000 != 0, None, m);
+                }
+            }
+        }
+    }
+    let vram = g.vram();
+    assert!(
+        *vram == expected,
+        "{}",
+        difference(vram, &expected, &background)
+    );
+}
