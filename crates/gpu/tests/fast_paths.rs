@@ -244,15 +244,16 @@ proptest! {
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
     }
 
-    /// Flat textured triangles and quads, modulated or raw, opaque or semi-transparent
-    /// (GP0 24h-27h, 2Ch-2Fh), mostly 4-bit: texel from §7 (window, page, CLUT; 0000h not
+    /// Textured triangles and quads, flat or Gouraud-shaded, modulated or raw, opaque or
+    /// semi-transparent (GP0 24h-27h, 2Ch-2Fh, 34h-37h, 3Ch-3Fh), mostly 4-bit: texel from §7 (window, page, CLUT; 0000h not
     /// drawn), modulated per §6 and dithered when E1h bit 9 is set unless raw (§6 "When
     /// dithering applies"), blended with the texpage attribute's mode only where the texel
-    /// has bit 15, which is also written (§6). UV from the §3.6 model.
+    /// has bit 15, which is also written (§6). UV and Gouraud colours from the §3.6 model.
     #[test]
     fn textured_polygons_match_model(
         pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 2]>()), 4),
-        quad in any::<bool>(),
+        (quad, gouraud) in (any::<bool>(), any::<bool>()),
+        shades in prop::collection::vec(color(), 4),
         (rgb, raw, semi) in (color(), any::<bool>(), any::<bool>()),
         (mode, e1_mode) in (0u32..4, 0u32..4),
         tex in texture(),
@@ -263,26 +264,31 @@ proptest! {
         g.gp0(0xE100_0000 | e1_mode << 5 | (env.dither as u32) << 9 | 0x1F);
         g.gp0(tex.e2());
         g.gp0_words(&env.words());
-        let cmd = 0x24 | raw as u32 | (semi as u32) << 1 | (quad as u32) << 3;
+        // Gouraud-textured polygons (34h-3Fh) carry one colour per vertex (§2).
+        let cmd = 0x24 | raw as u32 | (semi as u32) << 1 | (quad as u32) << 3 | (gouraud as u32) << 4;
         let texpage = tex.page_bits() | mode << 5;
         let n = if quad { 4 } else { 3 };
-        let mut words = vec![cmd << 24 | rgb_word(rgb)];
+        let vertex_rgb = |i: usize| if gouraud { shades[i] } else { rgb };
+        let mut words = vec![cmd << 24 | rgb_word(vertex_rgb(0))];
         for (i, p) in pts[..n].iter().enumerate() {
             let attr = match i {
                 0 => tex.clut << 16,
                 1 => texpage << 16,
                 _ => 0,
             };
+            if i > 0 && gouraud {
+                words.push(rgb_word(shades[i]));
+            }
             words.push(xy(p.0, p.1));
             words.push(p.2[0] as u32 | (p.2[1] as u32) << 8 | attr);
         }
         g.gp0_words(&words);
 
         let mut expected = background.clone();
-        let c = rgb8(rgb);
         for tri in halves(quad) {
             let v = tri.map(|i| {
                 let p = &pts[i];
+                let c = rgb8(vertex_rgb(i));
                 env.vertex(p.0, p.1, [c[0] as i64, c[1] as i64, c[2] as i64, p.2[0] as i64, p.2[1] as i64])
             });
             for p in model::triangle(v, env.clip()) {
@@ -290,6 +296,8 @@ proptest! {
                 if t == 0 {
                     continue;
                 }
+                // Flat polygons use their one colour; Gouraud ones the §3.6 colour at the pixel.
+                let c = if gouraud { [p.attr[0], p.attr[1], p.attr[2]] } else { rgb8(rgb) };
                 let color = if raw { t } else { pixel::modulate(t, c, p.x, p.y, env.dither) };
                 let bit15 = t & 0x8000 != 0;
                 let blend = (semi && bit15).then_some(mode);
