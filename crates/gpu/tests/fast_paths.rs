@@ -244,6 +244,42 @@ proptest! {
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
     }
 
+    /// Flat quads whose vertices are the corners of an axis-aligned rectangle, in every
+    /// order (some orders tile the rectangle with the two triangles, others cross; some
+    /// rectangles exceed the size limit): the same model as above, two triangles each.
+    #[test]
+    fn axis_aligned_flat_quads_match_model(
+        (x, y) in (coordinate(), coordinate()),
+        (w, h) in prop_oneof![4 => (1i32..400, 1i32..300), 1 => (1i32..1100, 1i32..600)],
+        order in Just([0usize, 1, 2, 3]).prop_shuffle(),
+        rgb in any::<[u8; 3]>(),
+        semi in any::<bool>(),
+        mode in 0u32..4,
+        env in env(),
+    ) {
+        let (mut g, background) = gpu_with_background(env.seed);
+        g.gp0(0xE100_0000 | mode << 5 | (env.dither as u32) << 9);
+        g.gp0_words(&env.words());
+        let corners = [(x, y), (x + w, y), (x, y + h), (x + w, y + h)];
+        let pts = order.map(|i| corners[i]);
+        let cmd = 0x28 | (semi as u32) << 1;
+        let mut words = vec![cmd << 24 | rgb_word(rgb)];
+        words.extend(pts.iter().map(|p| xy(p.0, p.1)));
+        g.gp0_words(&words);
+
+        let mut expected = background.clone();
+        let c = rgb8(rgb).map(|c| c as i64);
+        let color = pixel::flat(rgb8(rgb));
+        for tri in halves(true) {
+            let v = tri.map(|i| env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0]));
+            for p in model::triangle(v, env.clip()) {
+                pixel::plot(&mut expected, (p.x, p.y), color, false, semi.then_some(mode), env.mask);
+            }
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+
     /// Textured triangles and quads, flat or Gouraud-shaded, modulated or raw, opaque or
     /// semi-transparent (GP0 24h-27h, 2Ch-2Fh, 34h-37h, 3Ch-3Fh), mostly 4-bit: texel from §7 (window, page, CLUT; 0000h not
     /// drawn), modulated per §6 and dithered when E1h bit 9 is set unless raw (§6 "When

@@ -601,6 +601,79 @@ pub(crate) fn draw_triangle_precise(
     }
 }
 
+/// The columns `[x0, x1)` and lines `[y0, y1)` two triangles of a quad cover when they tile
+/// an axis-aligned rectangle: the four vertices are its four corners, and the second and
+/// third (the edge the two triangles share, docs/hardware/gpu.md §3.1) are opposite
+/// corners. Under the fill rule (§3.5: left and top edges drawn, right and bottom edges not,
+/// the shared diagonal drawn by exactly one of the two) every pixel of the rectangle is then
+/// covered exactly once and no other. `None` for any other quad, and for one the size limit
+/// drops (§3.2).
+fn tiled_rectangle(v: [(i32, i32); 4]) -> Option<(i32, i32, i32, i32)> {
+    let v = v.map(|(x, y)| (wrap11(x), wrap11(y)));
+    let (x0, x1) = (v[1].0.min(v[2].0), v[1].0.max(v[2].0));
+    let (y0, y1) = (v[1].1.min(v[2].1), v[1].1.max(v[2].1));
+    let corner = |p: (i32, i32)| (p.0 == x0 || p.0 == x1) && (p.1 == y0 || p.1 == y1);
+    let tiles = x0 < x1
+        && y0 < y1
+        && x1 - x0 < 1024
+        && y1 - y0 < 512
+        && v.iter().all(|&p| corner(p))
+        && v[0].0 != v[3].0
+        && v[0].1 != v[3].1
+        && v[0] != v[1]
+        && v[0] != v[2];
+    tiles.then_some((x0, x1, y0, y1))
+}
+
+/// Draw a flat, untextured, opaque quad without mask check whose two triangles tile an
+/// axis-aligned rectangle (see `tiled_rectangle`) as one span per line instead of two:
+/// the same pixels, with the same value, as drawing the triangles one after the other.
+/// Returns the pixels drawn, or `None` (nothing drawn) when the quad does not qualify.
+pub(crate) fn draw_tiled_quad(
+    vram: &mut Vram,
+    state: &DrawState,
+    first: &Triangle,
+    second: &Triangle,
+    rows: Rows,
+) -> Option<DrawCount> {
+    if first.texture.is_some()
+        || first.gouraud
+        || first.blend.is_some()
+        || first.dither
+        || state.mask.check
+    {
+        return None;
+    }
+    let [a, b, c] = first.vertices;
+    let d = second.vertices[2];
+    let (x0, x1, y0, y1) = tiled_rectangle([a, b, c, d].map(|p| (p.x, p.y)))?;
+    let area = &state.area;
+    let (x_start, x_end) = (x0.max(area.left as i32), x1.min(area.right as i32 + 1));
+    let (y_start, y_end) = (y0.max(area.top as i32), y1.min(area.bottom as i32 + 1));
+    let mut drawn = DrawCount::default();
+    if x_start >= x_end || y_start >= y_end {
+        return Some(drawn);
+    }
+    let color = flat_color(
+        a.color.map(i32::from),
+        if state.mask.set { 0x8000 } else { 0 },
+    );
+    let line_buf;
+    let line: &[u16] = if x_end - x_start >= LINE_WIDTH {
+        line_buf = [color; crate::VRAM_WIDTH];
+        &line_buf
+    } else {
+        &[]
+    };
+    let vram = vram.as_array_mut();
+    rows.each(y_start, y_end, |y| {
+        let row = ((y & 511) as usize) * crate::VRAM_WIDTH;
+        fill_span(vram, row, x_start, x_end, color, line);
+    });
+    drawn.pixels = (x_end - x_start) as u32 * rows.count(y_start, y_end);
+    Some(drawn)
+}
+
 /// Draw one line segment, both endpoints included (docs/hardware/gpu.md §4), writing only the
 /// lines `rows` keeps. Returns the points stepped. Lines test each pixel's row, so the filter
 /// is a const parameter: an unfiltered line has no row test.
