@@ -254,9 +254,12 @@ pub(crate) fn fill_span(
 ) {
     let len = (x_end - x_start) as usize;
     if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-        match line.get(..len) {
-            Some(src) if x_end - x_start >= COPY_SPAN => s.copy_from_slice(src),
-            _ => s.fill(c),
+        if x_end - x_start >= COPY_SPAN
+            && let Some(src) = line.get(..len)
+        {
+            s.copy_from_slice(src);
+        } else {
+            s.fill(c);
         }
     }
 }
