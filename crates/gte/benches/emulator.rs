@@ -1,7 +1,9 @@
 //! GTE commands as an emulator drives them: per call, the inputs are written with MTC2 (and the
 //! command word issued) on an evolving register state, and the results and FLAG read back with
 //! MFC2/CFC2. Register indices and command words pass through `black_box`, as a CPU decoder
-//! produces them at run time. Compare with the `commands` bench (`execute` alone).
+//! produces them at run time; the written values are made ahead of time, as an emulator finds
+//! them in CPU registers. Each command has a `registers only` row (the same MTC2/MFC2/CFC2
+//! traffic without the command) and compares with the `commands` bench (`execute` alone).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gte::{Command, Gte, MatrixSel, Opcode, TranslationSel, VectorSel};
@@ -84,36 +86,58 @@ fn word(op: Opcode, lm: bool) -> u32 {
     .word()
 }
 
-/// Benchmark `op`: per call `writes` (MTC2s from a random word), the command, then MFC2 of
-/// `reads` and CFC2 of FLAG.
-fn run<W: Fn(&mut Gte, u32)>(
+/// Benchmark `op` as an emulator runs it: per call, MTC2 of `writes` (register, value) pairs
+/// made from a random word ahead of time (an emulator takes them from CPU registers), the
+/// command, then MFC2 of `reads` and CFC2 of FLAG. A second row, `…/registers only`, does the
+/// same register traffic without the command: the share of the per-call time that is register
+/// access rather than the command.
+fn run<const N: usize>(
     c: &mut Criterion,
     name: &str,
     op: Opcode,
     lm: bool,
-    writes: W,
+    writes: impl Fn(u32) -> [(u32, u32); N],
     reads: &[u32],
 ) {
-    let random = inputs(1024);
+    let calls: Vec<[(u32, u32); N]> = inputs(1024).into_iter().map(writes).collect();
     let cmd = word(op, lm);
-    let mut gte = loaded();
-    let mut i = 0usize;
-    c.bench_function(name, |b| {
-        b.iter(|| {
-            let r = random[i & 1023];
-            i = i.wrapping_add(1);
-            writes(&mut gte, r);
-            let mut acc = gte.execute(black_box(cmd)).unwrap_or(0);
-            for &reg in reads {
-                acc = acc.wrapping_add(gte.read_data(black_box(reg)));
-            }
-            acc.wrapping_add(gte.read_control(black_box(31)))
-        })
-    });
+    for execute in [true, false] {
+        let mut gte = loaded();
+        let mut i = 0usize;
+        let label = if execute {
+            name.to_string()
+        } else {
+            format!("{name}/registers only")
+        };
+        c.bench_function(&label, |b| {
+            b.iter(|| {
+                for &(reg, value) in &calls[i & 1023] {
+                    gte.write_data(black_box(reg), value);
+                }
+                i = i.wrapping_add(1);
+                let mut acc = if execute {
+                    gte.execute(black_box(cmd)).unwrap_or(0)
+                } else {
+                    0
+                };
+                for &reg in reads {
+                    acc = acc.wrapping_add(gte.read_data(black_box(reg)));
+                }
+                acc.wrapping_add(gte.read_control(black_box(31)))
+            })
+        });
+    }
 }
 
-fn mtc2(gte: &mut Gte, reg: u32, value: u32) {
-    gte.write_data(black_box(reg), value);
+/// The three vertices of RTPT/NCDT/NCCT (r0-r5) from one random word.
+fn vertices(r: u32) -> [(u32, u32); 6] {
+    let mut w = [(0, 0); 6];
+    for k in 0..3 {
+        let (v, z) = vertex(r.rotate_left(k * 11));
+        w[2 * k as usize] = (2 * k, v);
+        w[2 * k as usize + 1] = (2 * k + 1, z);
+    }
+    w
 }
 
 fn emulator(c: &mut Criterion) {
@@ -122,10 +146,9 @@ fn emulator(c: &mut Criterion) {
         "emulator/RTPS",
         Opcode::Rtps,
         false,
-        |g, r| {
+        |r| {
             let (v, z) = vertex(r);
-            mtc2(g, 0, v);
-            mtc2(g, 1, z);
+            [(0, v), (1, z)]
         },
         &[14, 19, 8],
     );
@@ -134,13 +157,7 @@ fn emulator(c: &mut Criterion) {
         "emulator/RTPT",
         Opcode::Rtpt,
         false,
-        |g, r| {
-            for k in 0..3 {
-                let (v, z) = vertex(r.rotate_left(k * 11));
-                mtc2(g, 2 * k, v);
-                mtc2(g, 2 * k + 1, z);
-            }
-        },
+        vertices,
         &[12, 13, 14, 17, 18, 19, 8],
     );
     run(
@@ -148,15 +165,14 @@ fn emulator(c: &mut Criterion) {
         "emulator/NCLIP",
         Opcode::Nclip,
         false,
-        |g, r| {
-            for k in 0..3 {
-                let s = r.rotate_left(k * 10);
-                mtc2(
-                    g,
-                    12 + k,
+        |r| -> [(u32, u32); 3] {
+            core::array::from_fn(|k| {
+                let s = r.rotate_left(k as u32 * 10);
+                (
+                    12 + k as u32,
                     xy((s & 0x3FF) as i32 - 512, ((s >> 10) & 0x1FF) as i32 - 256),
-                );
-            }
+                )
+            })
         },
         &[24],
     );
@@ -165,28 +181,29 @@ fn emulator(c: &mut Criterion) {
         "emulator/NCDS",
         Opcode::Ncds,
         true,
-        |g, r| {
+        |r| {
             let (v, z) = vertex(r);
-            mtc2(g, 0, v);
-            mtc2(g, 1, z);
-            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
-            mtc2(g, 8, r >> 20);
+            [
+                (0, v),
+                (1, z),
+                (6, 0x3080_8080 ^ (r & 0x3F3F3F)),
+                (8, r >> 20),
+            ]
         },
         &[22],
     );
+    let vertices_and_colour = |r: u32| {
+        let v = vertices(r);
+        let mut w = [(6, 0x3080_8080 ^ (r & 0x3F3F3F)); 7];
+        w[..6].copy_from_slice(&v);
+        w
+    };
     run(
         c,
         "emulator/NCDT",
         Opcode::Ncdt,
         true,
-        |g, r| {
-            for k in 0..3 {
-                let (v, z) = vertex(r.rotate_left(k * 11));
-                mtc2(g, 2 * k, v);
-                mtc2(g, 2 * k + 1, z);
-            }
-            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
-        },
+        vertices_and_colour,
         &[20, 21, 22],
     );
     run(
@@ -194,14 +211,7 @@ fn emulator(c: &mut Criterion) {
         "emulator/NCCT",
         Opcode::Ncct,
         true,
-        |g, r| {
-            for k in 0..3 {
-                let (v, z) = vertex(r.rotate_left(k * 11));
-                mtc2(g, 2 * k, v);
-                mtc2(g, 2 * k + 1, z);
-            }
-            mtc2(g, 6, 0x3080_8080 ^ (r & 0x3F3F3F));
-        },
+        vertices_and_colour,
         &[20, 21, 22],
     );
     run(
@@ -209,10 +219,9 @@ fn emulator(c: &mut Criterion) {
         "emulator/MVMVA",
         Opcode::Mvmva,
         false,
-        |g, r| {
+        |r| {
             let (v, z) = vertex(r);
-            mtc2(g, 0, v);
-            mtc2(g, 1, z);
+            [(0, v), (1, z)]
         },
         &[25, 26, 27, 9, 10, 11],
     );
@@ -221,10 +230,12 @@ fn emulator(c: &mut Criterion) {
         "emulator/AVSZ3",
         Opcode::Avsz3,
         false,
-        |g, r| {
-            mtc2(g, 17, r & 0xFFFF);
-            mtc2(g, 18, r >> 16);
-            mtc2(g, 19, r.rotate_left(8) & 0xFFFF);
+        |r| {
+            [
+                (17, r & 0xFFFF),
+                (18, r >> 16),
+                (19, r.rotate_left(8) & 0xFFFF),
+            ]
         },
         &[7],
     );
@@ -233,10 +244,7 @@ fn emulator(c: &mut Criterion) {
         "emulator/DPCS",
         Opcode::Dpcs,
         false,
-        |g, r| {
-            mtc2(g, 6, 0x3000_0000 | (r & 0xFF_FFFF));
-            mtc2(g, 8, r >> 19);
-        },
+        |r| [(6, 0x3000_0000 | (r & 0xFF_FFFF)), (8, r >> 19)],
         &[22],
     );
     run(
@@ -244,11 +252,13 @@ fn emulator(c: &mut Criterion) {
         "emulator/GPF",
         Opcode::Gpf,
         false,
-        |g, r| {
-            mtc2(g, 8, r >> 19);
-            mtc2(g, 9, r & 0x7FFF);
-            mtc2(g, 10, (r >> 8) & 0x7FFF);
-            mtc2(g, 11, (r >> 16) & 0x7FFF);
+        |r| {
+            [
+                (8, r >> 19),
+                (9, r & 0x7FFF),
+                (10, (r >> 8) & 0x7FFF),
+                (11, (r >> 16) & 0x7FFF),
+            ]
         },
         &[22],
     );

@@ -77,11 +77,7 @@ impl Flag {
     /// recomputed from the error sources, as a CTC2 write does.
     pub const fn from_bits(bits: u32) -> Flag {
         let kept = bits & Self::WRITABLE;
-        if kept & Self::ERROR_SOURCES != 0 {
-            Flag(kept | Self::ERROR.0)
-        } else {
-            Flag(kept)
-        }
+        Flag(kept | ((kept & Self::ERROR_SOURCES != 0) as u32) << 31)
     }
 
     /// The raw register value.

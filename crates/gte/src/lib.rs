@@ -181,41 +181,106 @@ impl Gte {
     /// Returns the command's cycle count (docs/hardware/gte.md §1), or `None` for an undefined opcode.
     #[inline]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
-        let command = Command::new(command);
-        self.flag_bits = 0;
-        let opcode = command.opcode();
-        if let Some(op) = opcode {
-            self.run(op, command);
-        }
-        self.regs.flag = Flag::from_bits(self.flag_bits);
-        opcode.map(Opcode::cycles)
-    }
-
-    fn run(&mut self, op: Opcode, c: Command) {
+        let c = Command::new(command);
         let (shift, lm) = (c.shift(), c.lm());
-        match op {
-            Opcode::Rtps => self.rtps(shift, lm),
-            Opcode::Rtpt => self.rtpt(shift, lm),
-            Opcode::Nclip => self.nclip(),
-            Opcode::Avsz3 => self.avsz3(),
-            Opcode::Avsz4 => self.avsz4(),
-            Opcode::Mvmva => self.mvmva(c, shift, lm),
-            Opcode::Sqr => self.sqr(shift, lm),
-            Opcode::Op => self.op(shift, lm),
-            Opcode::Ncs => self.ncs(shift, lm),
-            Opcode::Nct => self.nct(shift, lm),
-            Opcode::Nccs => self.nccs(shift, lm),
-            Opcode::Ncct => self.ncct(shift, lm),
-            Opcode::Ncds => self.ncds(shift, lm),
-            Opcode::Ncdt => self.ncdt(shift, lm),
-            Opcode::Cc => self.cc(shift, lm),
-            Opcode::Cdp => self.cdp(shift, lm),
-            Opcode::Dpcs => self.dpcs(shift, lm),
-            Opcode::Dpct => self.dpct(shift, lm),
-            Opcode::Dcpl => self.dcpl(shift, lm),
-            Opcode::Intpl => self.intpl(shift, lm),
-            Opcode::Gpf => self.gpf(shift, lm),
-            Opcode::Gpl => self.gpl(shift, lm),
-        }
+        self.flag_bits = 0;
+        // One dispatch on bits 0-5 (the opcode table of `Opcode::from_bits`) runs the command
+        // and yields its cycle count.
+        let op = match command & 0x3F {
+            0x01 => {
+                self.rtps(shift, lm);
+                Opcode::Rtps
+            }
+            0x06 => {
+                self.nclip();
+                Opcode::Nclip
+            }
+            0x0C => {
+                self.op(shift, lm);
+                Opcode::Op
+            }
+            0x10 => {
+                self.dpcs(shift, lm);
+                Opcode::Dpcs
+            }
+            0x11 => {
+                self.intpl(shift, lm);
+                Opcode::Intpl
+            }
+            0x12 => {
+                self.mvmva(c, shift, lm);
+                Opcode::Mvmva
+            }
+            0x13 => {
+                self.ncds(shift, lm);
+                Opcode::Ncds
+            }
+            0x14 => {
+                self.cdp(shift, lm);
+                Opcode::Cdp
+            }
+            0x16 => {
+                self.ncdt(shift, lm);
+                Opcode::Ncdt
+            }
+            0x1B => {
+                self.nccs(shift, lm);
+                Opcode::Nccs
+            }
+            0x1C => {
+                self.cc(shift, lm);
+                Opcode::Cc
+            }
+            0x1E => {
+                self.ncs(shift, lm);
+                Opcode::Ncs
+            }
+            0x20 => {
+                self.nct(shift, lm);
+                Opcode::Nct
+            }
+            0x28 => {
+                self.sqr(shift, lm);
+                Opcode::Sqr
+            }
+            0x29 => {
+                self.dcpl(shift, lm);
+                Opcode::Dcpl
+            }
+            0x2A => {
+                self.dpct(shift, lm);
+                Opcode::Dpct
+            }
+            0x2D => {
+                self.avsz3();
+                Opcode::Avsz3
+            }
+            0x2E => {
+                self.avsz4();
+                Opcode::Avsz4
+            }
+            0x30 => {
+                self.rtpt(shift, lm);
+                Opcode::Rtpt
+            }
+            0x3D => {
+                self.gpf(shift, lm);
+                Opcode::Gpf
+            }
+            0x3E => {
+                self.gpl(shift, lm);
+                Opcode::Gpl
+            }
+            0x3F => {
+                self.ncct(shift, lm);
+                Opcode::Ncct
+            }
+            _ => {
+                self.regs.flag = Flag::EMPTY;
+                return None;
+            }
+        };
+        self.regs.flag = Flag::from_bits(self.flag_bits);
+        Some(op.cycles())
     }
 }

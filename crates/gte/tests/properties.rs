@@ -371,6 +371,12 @@ fn cycle_counts() {
         assert_eq!(Gte::new().execute(op | 0x1F0_0000), Some(cycles));
     }
     assert_eq!(gte::cycles(0), None);
+    // `execute` dispatches on bits 0-5 itself: it must define exactly the opcodes above.
+    for bits in 0..64u32 {
+        let listed = expected.iter().find(|(op, _)| *op == bits).map(|e| e.1);
+        assert_eq!(Gte::new().execute(bits), listed, "opcode {bits:02X}");
+        assert_eq!(Opcode::from_bits(bits).map(Opcode::cycles), listed);
+    }
 }
 
 /// The non-hardware divides run only in a build with `divide-modes`; without it they are
