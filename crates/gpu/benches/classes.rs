@@ -235,5 +235,53 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+/// The store floor of the two classes bound by writing pixels: the same quads and flat
+/// triangles (positions and colours from the class's own words) written into a 1024x512
+/// halfword array as plain row fills, with no GPU: no decode, no edge walk, no clip, no
+/// drawing-time count. 15-bit colour conversion is done once per primitive.
+fn floor(c: &mut Criterion) {
+    let all = classes();
+    let mut vram = vec![0u16; 1024 * 512];
+    let mut group = c.benchmark_group("floor");
+    group.throughput(Throughput::Elements(PRIMITIVES as u64));
+    let pixel = |w: u32| ((w >> 3) & 0x1F | (w >> 6) & 0x3E0 | (w >> 9) & 0x7C00) as u16;
+    let origin = |w: u32| ((w & 0xFFFF) as usize, (w >> 16) as usize);
+    let quads = &all
+        .iter()
+        .find(|c| c.name == "flat_quads_320x240")
+        .unwrap()
+        .words;
+    group.bench_function("flat_quads_320x240_row_fills", |b| {
+        b.iter(|| {
+            for q in black_box(quads).chunks_exact(5) {
+                let (x, y) = origin(q[1]);
+                let p = pixel(q[0]);
+                for row in y..y + 240 {
+                    vram[row * 1024 + x..row * 1024 + x + 320].fill(p);
+                }
+            }
+        })
+    });
+    let tris = &all
+        .iter()
+        .find(|c| c.name == "flat_triangles")
+        .unwrap()
+        .words;
+    group.bench_function("flat_triangles_row_fills", |b| {
+        b.iter(|| {
+            for t in black_box(tris).chunks_exact(4) {
+                let (x, y) = origin(t[1]);
+                let p = pixel(t[0]);
+                for k in 0..LEG as usize {
+                    let row = (y + k) * 1024 + x;
+                    vram[row..row + LEG as usize - k].fill(p);
+                }
+            }
+        })
+    });
+    group.finish();
+    black_box(&vram);
+}
+
+criterion_group!(benches, bench, floor);
 criterion_main!(benches);
