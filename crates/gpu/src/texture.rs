@@ -16,6 +16,33 @@ pub struct ClutCache {
     entries: [u16; 256],
     key: Option<(u16, u16)>,
     loaded_8bit: bool,
+    /// The first 16 entries shaded for one colour in every dither cell: derived from the
+    /// entries, forgotten whenever they are reloaded, never saved.
+    #[cfg_attr(feature = "serde", serde(skip))]
+    dithered: DitheredClut4,
+}
+
+/// A 4-bit CLUT's 16 entries modulated by one colour and dithered, for each of the 16 cells
+/// of the dither matrix (docs/hardware/gpu.md §6), indexed `[y & 3][x & 3][entry]`. Entries are
+/// coded as [`crate::rasterizer::shaded_clut4`] codes them.
+pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
+
+/// The cached [`DitheredCells`] and the colour they were shaded with (`None`: not valid).
+#[derive(Clone, Default)]
+struct DitheredClut4 {
+    color: Option<[u8; 3]>,
+    /// The colour the previous request asked for: a second primitive in a row with one
+    /// colour has the table shaded, whatever its size.
+    requested: Option<[u8; 3]>,
+    cells: DitheredCells,
+}
+
+impl core::fmt::Debug for DitheredClut4 {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("DitheredClut4")
+            .field("color", &self.color)
+            .finish_non_exhaustive()
+    }
 }
 
 impl Default for ClutCache {
@@ -24,6 +51,7 @@ impl Default for ClutCache {
             entries: [0; 256],
             key: None,
             loaded_8bit: false,
+            dithered: DitheredClut4::default(),
         }
     }
 }
@@ -33,6 +61,7 @@ impl ClutCache {
     pub fn invalidate(&mut self) {
         self.key = None;
         self.loaded_8bit = false;
+        self.dithered.color = None;
     }
 
     /// A latched CLUT position is one a CLUT attribute can give: X a multiple of 16 up to
@@ -85,8 +114,31 @@ impl ClutCache {
             }
             self.key = Some(key);
             self.loaded_8bit = needs_8bit;
+            self.dithered.color = None;
         }
         &self.entries
+    }
+
+    /// [`ClutCache::latch`] for a 4-bit texture modulated by the one colour `rgb` and
+    /// dithered, and the latched entries shaded for every dither cell: kept from an earlier
+    /// primitive with the same colour and entries, else shaded now when `build` or when the
+    /// previous request was for the same colour, else `None`.
+    pub(crate) fn latch_dithered(
+        &mut self,
+        vram: &[u16; crate::VRAM_LEN],
+        texture: &Texture,
+        rgb: [u8; 3],
+        build: bool,
+    ) -> (&[u16; 256], Option<&DitheredCells>) {
+        self.latch(vram, texture);
+        let d = &mut self.dithered;
+        let repeated = d.requested.replace(rgb) == Some(rgb);
+        if d.color != Some(rgb) && (build || repeated) {
+            crate::rasterizer::dithered_clut4(&self.entries, rgb, &mut d.cells);
+            d.color = Some(rgb);
+        }
+        let cells = (d.color == Some(rgb)).then_some(&d.cells);
+        (&self.entries, cells)
     }
 }
 

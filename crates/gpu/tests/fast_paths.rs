@@ -581,3 +581,181 @@ fn clut4_modulation_every_texel_and_colour() {
         difference(vram, &expected, &background)
     );
 }
+
+/// One step of a dithered 4-bit sequence: a flat-modulated polygon (vertices, quad, semi,
+/// blend mode, colour 0 or 1, texture 0 or 1), a CPU-to-VRAM write of 16 halfwords over a
+/// texture's CLUT, or GP0(01h).
+#[derive(Clone, Debug)]
+enum Step {
+    Polygon {
+        pts: Vec<(i32, i32, [u8; 2])>,
+        quad: bool,
+        semi: bool,
+        mode: u32,
+        color: usize,
+        texture: usize,
+    },
+    ClutWrite {
+        texture: usize,
+        halfwords: [u16; 16],
+    },
+    Invalidate,
+}
+
+fn step() -> impl Strategy<Value = Step> {
+    // Small polygons (the common case of a mesh) and some large ones.
+    let point = prop_oneof![
+        3 => (0i32..24, 0i32..24, any::<[u8; 2]>()),
+        1 => (coordinate(), coordinate(), any::<[u8; 2]>()),
+    ];
+    let polygon = (
+        (0i32..300, 0i32..300),
+        prop::collection::vec(point, 4),
+        any::<(bool, bool)>(),
+        0u32..4,
+        prop_oneof![3 => Just(0usize), 1 => Just(1usize)],
+        0usize..2,
+    )
+        .prop_map(
+            |(at, pts, (quad, semi), mode, color, texture)| Step::Polygon {
+                // Small polygons are placed at `at`; large ones are where they are.
+                pts: pts
+                    .into_iter()
+                    .map(|(x, y, uv)| {
+                        if x < 24 && y < 24 && x >= 0 && y >= 0 {
+                            (at.0 + x, at.1 + y, uv)
+                        } else {
+                            (x, y, uv)
+                        }
+                    })
+                    .collect(),
+                quad,
+                semi,
+                mode,
+                color,
+                texture,
+            },
+        );
+    prop_oneof![
+        8 => polygon,
+        1 => (0usize..2, any::<[u16; 16]>()).prop_map(|(texture, halfwords)| Step::ClutWrite { texture, halfwords }),
+        1 => Just(Step::Invalidate),
+    ]
+}
+
+/// The 4-bit texel index at (u, v): texture window, then the halfword and nibble (§7).
+fn index4(tex: &Texture, vram: &Vram, u: u32, v: u32) -> usize {
+    let [mx, my, ox, oy] = tex.window;
+    let u = ((u & 0xFF) & !(mx * 8)) | ((ox & mx) * 8);
+    let v = ((v & 0xFF) & !(my * 8)) | ((oy & my) * 8);
+    let word = vram.pixel(
+        (64 * tex.page_x as usize + (u as usize >> 2)) & 1023,
+        256 * tex.page_y as usize + v as usize,
+    );
+    ((word >> ((u & 3) * 4)) & 0xF) as usize
+}
+
+/// A 4-bit texture (page X 8-15, any CLUT in x 512-1008) with a window.
+fn texture4() -> impl Strategy<Value = Texture> {
+    texture().prop_map(|t| Texture {
+        depth: 0,
+        clut: (32 + (t.clut & 0x3F) % 32) | (t.clut & !0x3F),
+        ..t
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Sequences of flat-modulated, dithered 4-bit polygons (GP0 24h-27h, 2Ch-2Fh) in two
+    /// colours over two CLUTs, with CPU-to-VRAM writes over a CLUT and GP0(01h) between
+    /// them: each polygon shades the CLUT entries the CLUT cache holds (§7 "CLUT cache": loaded
+    /// when a primitive's CLUT position differs from the cached one or after GP0(01h), not
+    /// refreshed by VRAM writes), modulated and dithered per pixel (§6), whichever colour and
+    /// CLUT the polygons before it used. The model keeps its own copy of the cached entries.
+    #[test]
+    fn dithered_clut4_sequences_match_model(
+        steps in prop::collection::vec(step(), 1..10),
+        colors in (color(), color()),
+        textures in (texture4(), texture4()),
+        env in env(),
+    ) {
+        let (mut g, background) = gpu_with_background(env.seed);
+        // Both textures share one E2h window; the first texture's window applies.
+        let textures = [textures.0, Texture { window: textures.0.window, ..textures.1 }];
+        let colors = [colors.0, colors.1];
+        g.gp0(0xE100_0000 | 1 << 9);
+        g.gp0(textures[0].e2());
+        g.gp0_words(&env.words());
+        let mut expected = background.clone();
+        // The model's CLUT cache: the CLUT attribute and the 16 entries it loaded.
+        let mut cache: Option<(u32, [u16; 16])> = None;
+        for step in &steps {
+            match step {
+                Step::Polygon { pts, quad, semi, mode, color, texture } => {
+                    let (tex, rgb) = (&textures[*texture], colors[*color]);
+                    let cmd = 0x24 | (*semi as u32) << 1 | (*quad as u32) << 3;
+                    let texpage = tex.page_bits() | mode << 5;
+                    let n = if *quad { 4 } else { 3 };
+                    let mut words = vec![cmd << 24 | rgb_word(rgb)];
+                    for (i, p) in pts[..n].iter().enumerate() {
+                        let attr = match i {
+                            0 => tex.clut << 16,
+                            1 => texpage << 16,
+                            _ => 0,
+                        };
+                        words.push(xy(p.0, p.1));
+                        words.push(p.2[0] as u32 | (p.2[1] as u32) << 8 | attr);
+                    }
+                    g.gp0_words(&words);
+                    let entries = match cache {
+                        Some((clut, entries)) if clut == tex.clut => entries,
+                        _ => {
+                            let (cx, cy) = ((tex.clut & 0x3F) as usize * 16, (tex.clut >> 6) as usize);
+                            let entries = core::array::from_fn(|i| expected.pixel(cx + i, cy));
+                            cache = Some((tex.clut, entries));
+                            entries
+                        }
+                    };
+                    let before = expected.clone();
+                    for tri in halves(*quad) {
+                        let v = tri.map(|i| {
+                            let p = &pts[i];
+                            env.vertex(p.0, p.1, [0, 0, 0, p.2[0] as i64, p.2[1] as i64])
+                        });
+                        for p in model::triangle(v, env.clip()) {
+                            let t = entries[index4(tex, &before, p.attr[3], p.attr[4])];
+                            if t == 0 {
+                                continue;
+                            }
+                            let color = pixel::modulate(t, rgb8(rgb), p.x, p.y, true);
+                            let bit15 = t & 0x8000 != 0;
+                            let blend = (*semi && bit15).then_some(*mode);
+                            pixel::plot(&mut expected, (p.x, p.y), color, bit15, blend, env.mask);
+                        }
+                    }
+                }
+                Step::ClutWrite { texture, halfwords } => {
+                    let clut = textures[*texture].clut;
+                    let (cx, cy) = ((clut & 0x3F) * 16, clut >> 6);
+                    // Written without the mask rules (E6h cleared for the transfer, §8).
+                    g.gp0(0xE600_0000);
+                    g.gp0_words(&[0xA000_0000, cy << 16 | cx, 1 << 16 | 16]);
+                    for pair in halfwords.chunks(2) {
+                        g.gp0(pair[0] as u32 | (pair[1] as u32) << 16);
+                    }
+                    g.gp0(env.mask.e6());
+                    for (i, &h) in halfwords.iter().enumerate() {
+                        expected.set_pixel(cx as usize + i, cy as usize, h);
+                    }
+                }
+                Step::Invalidate => {
+                    g.gp0(0x0100_0000);
+                    cache = None;
+                }
+            }
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+}

@@ -92,7 +92,7 @@ pub(super) fn draw<
                 0,
                 shade,
                 &env,
-                false,
+                None,
             );
         }
         x = x.wrapping_add(x_step);

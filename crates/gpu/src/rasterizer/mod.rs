@@ -11,10 +11,10 @@ mod rectangle;
 mod span;
 mod triangle;
 
-use crate::color::{PLAIN_TABLE, ShadeTable, blend, pack555};
+use crate::color::{DITHER_TABLES, PLAIN_TABLE, ShadeTable, blend, pack555};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::state::{BlendMode, DrawState, DrawingArea, TextureDepth};
-use crate::texture::{ClutCache, Sampler};
+use crate::texture::{ClutCache, DitheredCells, Sampler};
 use crate::{VRAM_LEN, Vram};
 
 /// What a primitive drew after clipping, counted once per span (never per pixel), for the
@@ -90,6 +90,10 @@ pub(crate) struct PixelEnv<'a> {
     /// 0 for a transparent entry (CLUT value 0000h), else `10000h | shaded | texel bit 15`.
     /// Filled only when a span routine reads it (see [`shaded_clut4`]).
     pub lut: [u32; 16],
+    /// For a dithered 4-bit texture under one colour, its CLUT entries shaded in every
+    /// dither cell ([`dithered_clut4`]), when the CLUT cache holds them or the primitive is
+    /// large enough to pay for shading them; `None` otherwise.
+    pub dithered: Option<&'a DitheredCells>,
     /// For a wide opaque flat primitive, a VRAM line's worth of its pixel value: long spans
     /// are copied from it, which the platform's block copy does with the widest stores the
     /// CPU has. Empty otherwise (see [`fill_span`]).
@@ -121,12 +125,42 @@ fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
     lut
 }
 
+/// The 16 CLUT entries of a 4-bit texture modulated by one colour `rgb` and dithered, for
+/// each cell of the dither matrix (docs/hardware/gpu.md §6): [`shaded_clut4`] with the cell's
+/// table instead of the undithered one, coded the same way.
+pub(crate) fn dithered_clut4(clut: &[u16; 256], rgb: [u8; 3], out: &mut DitheredCells) {
+    let rgb = rgb.map(i32::from);
+    // Each entry's three modulated channels, (t5 * c8) >> 4, before the dither.
+    let modulated: [[usize; 3]; 16] = core::array::from_fn(|i| {
+        let t = i32::from(clut[i]);
+        [
+            (((t & 0x1F) * rgb[0]) >> 4) as usize & 511,
+            ((((t >> 5) & 0x1F) * rgb[1]) >> 4) as usize & 511,
+            ((((t >> 10) & 0x1F) * rgb[2]) >> 4) as usize & 511,
+        ]
+    });
+    for (row, tables) in out.iter_mut().zip(&DITHER_TABLES) {
+        for (cell, table) in row.iter_mut().zip(tables) {
+            for ((entry, &t), m) in cell.iter_mut().zip(clut.iter()).zip(&modulated) {
+                let c = |i: usize| u16::from(table[i]);
+                let shaded = pack555(c(m[0]), c(m[1]), c(m[2]));
+                *entry = if t == 0 {
+                    0
+                } else {
+                    0x1_0000 | u32::from(shaded | (t & 0x8000))
+                };
+            }
+        }
+    }
+}
+
 /// Shade and write one pixel (docs/hardware/gpu.md §6): texel fetch and transparency, modulation or raw
 /// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
 /// `rgb` holds 8-bit channels; `shade` is the dither cell's table for this pixel (or the
 /// undithered one). With `lut` (4-bit textures only; a constant in every span routine, so
-/// the branch on it is folded away) the texel's shaded colour comes from `env.lut` and `rgb`
-/// and `shade` are not read.
+/// the branch on it is folded away) the texel's shaded colour comes from that table of
+/// shaded CLUT entries ([`shaded_clut4`], [`dithered_clut4`]) and `rgb` and `shade` are not
+/// read.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shade_pixel<
@@ -142,7 +176,7 @@ pub(crate) fn shade_pixel<
     v: u8,
     shade: &ShadeTable,
     env: &PixelEnv,
-    lut: bool,
+    lut: Option<&[u32; 16]>,
 ) {
     let dst = vram[index & (VRAM_LEN - 1)];
     if MASK_CHECK && dst & 0x8000 != 0 {
@@ -152,8 +186,8 @@ pub(crate) fn shade_pixel<
     let (color, semi, bit15) = if TEX == TEX_NONE {
         let c = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
         (c, BLEND, 0)
-    } else if lut {
-        let e = env.lut[env.sampler.index4(vram, u, v)];
+    } else if let Some(lut) = lut {
+        let e = lut[env.sampler.index4(vram, u, v)];
         if e == 0 {
             return;
         }
@@ -512,25 +546,51 @@ pub fn classify_rectangle(rect: &Rectangle, area: &DrawingArea) -> Coverage {
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
 
+/// A primitive's pixel environment, its texture's CLUT latched. `dithered` asks, for a
+/// dithered 4-bit texture under one colour, for that colour's [`PixelEnv::dithered`] table,
+/// and whether to shade it when the CLUT cache does not hold it.
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
     state: &DrawState,
     clut: &'a mut ClutCache,
     texture: Option<&Texture>,
     blend: Option<BlendMode>,
+    dithered: Option<([u8; 3], bool)>,
 ) -> PixelEnv<'a> {
     let (page_x, page_y) = texture.map_or((0, 0), |t| (t.page_x as usize, t.page_y as usize));
-    let clut = match texture {
-        Some(t) => clut.latch(vram, t),
-        None => clut.entries(),
+    let (clut, dithered) = match (texture, dithered) {
+        (Some(t), Some((rgb, build))) => clut.latch_dithered(vram, t, rgb, build),
+        (Some(t), None) => (clut.latch(vram, t), None),
+        (None, _) => (clut.entries(), None),
     };
     PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: blend.unwrap_or_default(),
         sampler: Sampler::new(clut, page_x, page_y, state.window),
         lut: [0; 16],
+        dithered,
         line: &[],
     }
+}
+
+/// A dithered 4-bit texture under one colour whose shaded table is not cached is shaded for
+/// every dither cell (256 entries) when its bounding box holds at least twice this many
+/// pixels; smaller ones shade pixel by pixel.
+const DITHERED_CLUT_PIXELS: i32 = 256;
+
+/// For a flat, modulated, dithered 4-bit triangle: its colour, and whether it is large
+/// enough to shade its CLUT for every dither cell (see [`DITHERED_CLUT_PIXELS`]).
+fn dithered_request(tri: &Triangle) -> Option<([u8; 3], bool)> {
+    let wanted = texture_kind(tri.texture.as_ref()) == 1
+        && !tri.gouraud
+        && tri.dither
+        && !tri.texture.is_some_and(|t| t.raw);
+    wanted.then(|| {
+        let [a, b, c] = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
+        let w = a.0.max(b.0).max(c.0) - a.0.min(b.0).min(c.0);
+        let h = a.1.max(b.1).max(c.1) - a.1.min(b.1).min(c.1);
+        (tri.vertices[0].color, w * h >= 2 * DITHERED_CLUT_PIXELS)
+    })
 }
 
 /// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
@@ -544,7 +604,8 @@ pub(crate) fn draw_triangle_rows(
 ) -> DrawCount {
     let vram = vram.as_array_mut();
     let line;
-    let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let dithered = dithered_request(tri);
+    let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend, dithered);
     if tri.texture.is_none()
         && !tri.gouraud
         && !tri.dither
@@ -592,7 +653,7 @@ pub(crate) fn draw_triangle_precise(
     perspective: bool,
 ) {
     let vram = vram.as_array_mut();
-    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend);
+    let env = env(vram, state, clut, tri.texture.as_ref(), tri.blend, None);
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
     use precise::draw;
@@ -692,6 +753,7 @@ pub(crate) fn draw_line_rows(
         blend: line.blend.unwrap_or_default(),
         sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
         lut: [0; 16],
+        dithered: None,
         line: &[],
     };
     let (g, b, d, m) = (
@@ -716,7 +778,7 @@ pub(crate) fn draw_rectangle_rows(
 ) -> DrawCount {
     let vram = vram.as_array_mut();
     let line;
-    let mut env = env(vram, state, clut, rect.texture.as_ref(), rect.blend);
+    let mut env = env(vram, state, clut, rect.texture.as_ref(), rect.blend, None);
     if rect.texture.is_none()
         && rect.blend.is_none()
         && !state.mask.check

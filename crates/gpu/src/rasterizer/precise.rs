@@ -157,7 +157,7 @@ pub(super) fn draw<
                 tv,
                 shade,
                 env,
-                false,
+                None,
             );
         }
     }

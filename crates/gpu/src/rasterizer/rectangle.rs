@@ -74,7 +74,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
                 v,
                 &PLAIN_TABLE,
                 &env,
-                TEX == 1,
+                (TEX == 1).then_some(&env.lut),
             );
             u = u.wrapping_add(du);
         }

@@ -182,14 +182,21 @@ pub(super) fn draw<
     let flat_color = super::flat_color(flat, env.mask_or);
     let step = grads.map(|g| g.0);
     // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
-    // time; a 4-bit texture under one undithered colour keeps its shaded CLUT instead.
+    // time; a 4-bit texture under one colour keeps its shaded CLUT instead (undithered, or
+    // dithered with the table of every dither cell, `PixelEnv::dithered`, at hand).
     // Raw textures need no colour maths and stay pixel by pixel, as does a primitive that
     // may read texels it has itself written (see `span::texture_clear_of`).
+    let dithered = if TEX == 1 && !GOURAUD && DITHER {
+        env.dithered
+    } else {
+        None
+    };
+    let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
     let groups = !BLEND
         && !MASK_CHECK
         && !RAW
         && (GOURAUD || TEX != TEX_NONE)
-        && !(TEX == 1 && !GOURAUD && !DITHER)
+        && !shaded_clut
         && (TEX == TEX_NONE || {
             let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
             span::texture_clear_of(
@@ -199,7 +206,7 @@ pub(super) fn draw<
                 (a.y.max(clip_top), c.y.min(clip_bottom)),
             )
         });
-    let lanes = span::LaneSteps::new(step);
+    let lanes = groups.then(|| span::LaneSteps::new(step));
 
     // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
     // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
@@ -255,7 +262,10 @@ pub(super) fn draw<
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
                 if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
                     super::fill_span(vram, row, x_start, x_end, flat_color, env.line);
-                } else if groups && x_end - x_start >= span::MIN_PIXELS {
+                } else if let Some(lanes) = lanes
+                    .as_ref()
+                    .filter(|_| x_end - x_start >= span::MIN_PIXELS)
+                {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
                     let acc = core::array::from_fn(|i| {
@@ -264,7 +274,7 @@ pub(super) fn draw<
                             .wrapping_add(grads[i].1.wrapping_mul(dy))
                     });
                     span::draw::<TEX, GOURAUD, DITHER>(
-                        vram, row, y, x_start, x_end, acc, &lanes, flat, &env,
+                        vram, row, y, x_start, x_end, acc, lanes, flat, &env,
                     );
                 } else {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
@@ -277,36 +287,21 @@ pub(super) fn draw<
                                 .wrapping_add(grads[i].1.wrapping_mul(dy));
                         }
                     }
-                    let dither_row = &DITHER_TABLES[(y & 3) as usize];
-                    for x in x_start..x_end {
-                        let rgb = if GOURAUD {
-                            [
-                                (acc[0] >> 24) as i32,
-                                (acc[1] >> 24) as i32,
-                                (acc[2] >> 24) as i32,
-                            ]
-                        } else {
-                            flat
-                        };
-                        shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+                    let span = (row, y, x_start, x_end);
+                    // One copy of the pixel loop per table kind, chosen per span.
+                    match dithered {
+                        Some(cells) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
                             vram,
-                            row + x as usize,
-                            rgb,
-                            (acc[3] >> 24) as u8,
-                            (acc[4] >> 24) as u8,
-                            if DITHER {
-                                &dither_row[(x & 3) as usize]
-                            } else {
-                                &PLAIN_TABLE
-                            },
+                            span,
+                            acc,
+                            step,
+                            flat,
                             &env,
-                            TEX == 1 && !GOURAUD && !DITHER,
-                        );
-                        for i in 0..5 {
-                            if used(i) {
-                                acc[i] = acc[i].wrapping_add(step[i]);
-                            }
-                        }
+                            Some(&cells[(y & 3) as usize]),
+                        ),
+                        None => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+                            vram, span, acc, step, flat, &env, None,
+                        ),
                     }
                 }
             }
@@ -314,6 +309,67 @@ pub(super) fn draw<
         }
     }
     drawn
+}
+
+/// Shade `[x_start, x_end)` of line `y` (VRAM row offset `row`) pixel by pixel from the
+/// attributes `acc` at `x_start`, stepped by `step`. `cells` holds the shaded CLUT entries of
+/// this line's four dither cells for a dithered 4-bit texture under one colour
+/// ([`super::dithered_clut4`]); an undithered one reads `env.lut`.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn pixels<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    (row, y, x_start, x_end): (usize, i32, i32, i32),
+    mut acc: [u32; 5],
+    step: [u32; 5],
+    flat: [i32; 3],
+    env: &PixelEnv,
+    cells: Option<&[[u32; 16]; 4]>,
+) {
+    let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
+    let dither_row = &DITHER_TABLES[(y & 3) as usize];
+    for x in x_start..x_end {
+        let rgb = if GOURAUD {
+            [
+                (acc[0] >> 24) as i32,
+                (acc[1] >> 24) as i32,
+                (acc[2] >> 24) as i32,
+            ]
+        } else {
+            flat
+        };
+        let lut = match cells {
+            Some(cells) => Some(&cells[(x & 3) as usize]),
+            None if TEX == 1 && !GOURAUD && !DITHER => Some(&env.lut),
+            None => None,
+        };
+        shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+            vram,
+            row + x as usize,
+            rgb,
+            (acc[3] >> 24) as u8,
+            (acc[4] >> 24) as u8,
+            if DITHER {
+                &dither_row[(x & 3) as usize]
+            } else {
+                &PLAIN_TABLE
+            },
+            env,
+            lut,
+        );
+        for i in 0..5 {
+            if used(i) {
+                acc[i] = acc[i].wrapping_add(step[i]);
+            }
+        }
+    }
 }
 
 #[cfg(test)]
