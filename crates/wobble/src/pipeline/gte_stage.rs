@@ -1,6 +1,6 @@
 //! The GTE stage: per object, RT/TR/light/fog set-up and one RTPS per shared vertex; per
 //! mesh face, NCLIP on its vertices' screen positions, the clip verdict, colours (NCCS/NCDS
-//! once per vertex, or per fade factor with fog; DPCS) and AVSZ3/AVSZ4 for the
+//! once per distinct normal, or per fade factor with fog; DPCS) and AVSZ3/AVSZ4 for the
 //! ordering-table index. A face split by tessellation, and every face with sub-pixel
 //! positions, goes through its own RTPT/RTPS, NCLIP and NCCT/NCDT instead.
 
@@ -10,7 +10,7 @@ use super::tessellate::PreparedFace;
 use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer, SUBPIXEL_BITS, SubpixelVertex};
 use gte::Flag;
-use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection};
+use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Vector3};
 
 /// A polygon after the GTE stage, waiting for its packet.
 #[derive(Clone, Copy, Debug, Default)]
@@ -90,21 +90,56 @@ fn transform(g: &mut Geometry, face: &PreparedFace, subpixel: bool) -> Transform
     t
 }
 
-/// A shared vertex after its RTPS, and its colour once a drawn face has lit it.
+/// A shared vertex after its RTPS.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct SharedProjection {
     xy: (i16, i16),
+    /// SXY as the GTE holds it: X in bits 0-15, Y in bits 16-31.
+    sxy: u32,
     sz: u16,
     ir0: I4F12,
     flag: Flag,
+}
+
+/// One of an object's distinct normals, and its colour once a drawn face has lit it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct LitNormal {
     /// What `color` was computed for: the IR0 bits NCDS faded it by (0 for NCCS, which
     /// does not fade), or [`UNLIT`].
     lit: i32,
     color: [u8; 3],
 }
 
-/// [`SharedProjection::lit`] of a vertex no face has lit yet this frame.
+impl Default for LitNormal {
+    fn default() -> Self {
+        Self {
+            lit: UNLIT,
+            color: [0; 3],
+        }
+    }
+}
+
+/// [`LitNormal::lit`] of a normal no face has lit yet this frame.
 const UNLIT: i32 = -1;
+
+/// The distinct normals of an object's shared vertices, and each vertex's index into them:
+/// NCCS/NCDS depend on the vertex through its normal alone (with the material colour, the
+/// light matrices, BK, FC and IR0, the same for the whole object), so vertices with one
+/// normal share one colour.
+pub(super) fn normal_table(vertices: &[SharedVertex]) -> (Vec<Vector3>, Vec<u32>) {
+    let mut index = std::collections::HashMap::new();
+    let mut normals = Vec::new();
+    let of = vertices
+        .iter()
+        .map(|v| {
+            *index.entry(v.normal).or_insert_with(|| {
+                normals.push(v.normal);
+                (normals.len() - 1) as u32
+            })
+        })
+        .collect();
+    (normals, of)
+}
 
 /// One RTPS per shared vertex of an object, as games run RTPS/RTPT over a vertex list into
 /// a scratch buffer. Each vertex gets its SXY, SZ, IR0 and FLAG from its own command: what
@@ -115,11 +150,10 @@ fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<Sha
         let p = g.project(v.position);
         SharedProjection {
             xy: (p.x, p.y),
+            sxy: u32::from(p.x as u16) | u32::from(p.y as u16) << 16,
             sz: p.sz,
             ir0: p.ir0,
             flag: p.flag,
-            lit: UNLIT,
-            color: [0; 3],
         }
     }));
 }
@@ -147,14 +181,23 @@ fn transform_shared(
         ir0: I4F12::ZERO,
         fine: None,
     };
+    let mut sxy = [0u32; 3];
     for (k, &i) in indices.iter().enumerate().take(n) {
         let v = shared.get(i as usize).copied().unwrap_or_default();
         t.flag = t.flag.union(v.flag);
         t.xy[k] = v.xy;
         t.sz[k] = v.sz;
         t.ir0 = v.ir0;
+        if let Some(w) = sxy.get_mut(k) {
+            *w = v.sxy;
+        }
     }
-    t.area = g.nclip([t.xy[0], t.xy[1], t.xy[2]]);
+    // SXY0-2 take the register words as RTPS left them.
+    let gte = g.gte_mut();
+    for (r, w) in (12..).zip(sxy) {
+        gte.write_data(r, w);
+    }
+    t.area = g.nclip_current();
     t
 }
 
@@ -215,17 +258,17 @@ fn light(
     color
 }
 
-/// [`light`] for a mesh face from its shared vertices: NCCS once per vertex a frame; with
-/// fog, NCDS with IR0 loaded with the face's factor (its last vertex's IR0, what NCDT reads
-/// after RTPT, docs/hardware/gte.md §5.7), once per vertex and factor: a vertex keeps the
-/// colour of the last factor it was faded by. NCCT and NCDT are NCCS and NCDS for each of
-/// three normals (§8), so the colours are the same.
+/// [`light`] for a mesh face from its shared vertices: NCCS once per distinct normal a
+/// frame; with fog, NCDS with IR0 loaded with the face's factor (its last vertex's IR0, what
+/// NCDT reads after RTPT, docs/hardware/gte.md §5.7), once per normal and factor: a normal
+/// keeps the colour of the last factor it was faded by. NCCT and NCDT are NCCS and NCDS for
+/// each of three normals (§8), so the colours are the same.
 #[allow(clippy::too_many_arguments)]
 fn light_shared(
     g: &mut Geometry,
     (lit, fogged): (bool, bool),
-    shared: &mut [SharedProjection],
-    vertices: &[SharedVertex],
+    cache: &mut [LitNormal],
+    (normals, normal_of): (&[Vector3], &[u32]),
     (indices, quad): (&[u32; 4], bool),
     base: [u8; 3],
     ir0: I4F12,
@@ -236,14 +279,16 @@ fn light_shared(
             let key = if fogged { i32::from(ir0.to_bits()) } else { 0 };
             let mut ir0_loaded = false;
             let n = if quad { 4 } else { 3 };
-            for (k, c) in color.iter_mut().enumerate().take(n) {
-                let i = indices[k] as usize;
-                let Some(v) = shared.get_mut(i) else {
+            for (c, &i) in color.iter_mut().zip(indices).take(n) {
+                let Some(&m) = normal_of.get(i as usize) else {
                     continue;
                 };
-                if v.lit != key {
-                    let normal = vertices.get(i).copied().unwrap_or_default().normal;
-                    v.color = if fogged {
+                let Some(entry) = cache.get_mut(m as usize) else {
+                    continue;
+                };
+                if entry.lit != key {
+                    let normal = normals.get(m as usize).copied().unwrap_or_default();
+                    entry.color = if fogged {
                         if !ir0_loaded {
                             g.gte_mut().write_data(8, ir0.to_bits() as i32 as u32);
                             ir0_loaded = true;
@@ -252,9 +297,9 @@ fn light_shared(
                     } else {
                         g.normal_color_color(normal, base)
                     };
-                    v.lit = key;
+                    entry.lit = key;
                 }
-                *c = v.color;
+                *c = entry.color;
             }
         }
         (false, true) => color = [g.depth_cue(base, ir0); 4],
@@ -291,6 +336,7 @@ fn emit(
     (xy, sz): ([(i16, i16); 4], [u16; 4]),
     color: [[u8; 3]; 4],
     (texture, blend): (Option<(u32, u32)>, Option<u8>),
+    uv: [(u8, u8); 4],
 ) -> ProjectedFace {
     let otz = if face.quad {
         g.average_z4(sz)
@@ -300,7 +346,7 @@ fn emit(
     ProjectedFace {
         xy,
         color,
-        uv: face.v.map(|p| p.texel()),
+        uv,
         quad: face.quad,
         ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
         texture,
@@ -345,6 +391,7 @@ impl Renderer {
         }
         let share = !options.subpixel && !self.per_polygon;
         let shared = &mut self.shared;
+        let lit_normals = &mut self.lit_normals;
         for (object_index, (object, prepared)) in
             scene.objects.iter().zip(&self.objects).enumerate()
         {
@@ -379,6 +426,8 @@ impl Renderer {
             });
             if share {
                 project_shared(g, &prepared.vertices, shared);
+                lit_normals.clear();
+                lit_normals.resize(prepared.normals.len(), LitNormal::default());
             }
             for (face_index, mesh_face) in prepared.faces.iter().enumerate() {
                 // The mesh face itself uses its shared vertices; its pieces, new vertices
@@ -432,8 +481,8 @@ impl Renderer {
                             Some(indices) => light_shared(
                                 g,
                                 lighting,
-                                shared,
-                                &prepared.vertices,
+                                lit_normals,
+                                (&prepared.normals, &prepared.normal_of),
                                 (indices, face.quad),
                                 object.color,
                                 ir0,
@@ -443,7 +492,12 @@ impl Renderer {
                         if options.precise() {
                             precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
                         }
-                        let projected = emit(g, face, (xy, sz), color, (texture, blend));
+                        // A mesh face's texels are rounded once, when the object is prepared.
+                        let uv = match indices.and(prepared.texels.get(face_index)) {
+                            Some(&uv) => uv,
+                            None => face.v.map(|p| p.texel()),
+                        };
+                        let projected = emit(g, face, (xy, sz), color, (texture, blend), uv);
                         if let Some(tr) = trace.as_deref_mut() {
                             let record = tr.faces.len().saturating_sub(1);
                             if let Some(r) = tr.faces.last_mut() {
@@ -470,7 +524,7 @@ impl Renderer {
 mod tests {
     use super::super::tessellate::PreparedVertex;
     use super::*;
-    use gte::typed::{Translation, Vector3};
+    use gte::typed::Translation;
     use proptest::prelude::*;
 
     fn vertex() -> impl Strategy<Value = Vector3> {
@@ -621,7 +675,8 @@ mod tests {
             let t = transform(&mut g, &face, false);
             let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, quad, screen);
             let color = light(&mut g, lighting, &face, base, t.ir0);
-            let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None)).ot_index;
+            let uv = face.v.map(|p| p.texel());
+            let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None), uv).ot_index;
 
             let mut shared = Vec::new();
             project_shared(&mut g, &vertices, &mut shared);
@@ -634,18 +689,20 @@ mod tests {
             prop_assert_eq!(s.xy, t.xy);
             prop_assert_eq!(s.sz, t.sz);
             prop_assert_eq!(s.ir0, t.ir0);
-            let vertex_color = |g: &mut Geometry, shared: &mut Vec<SharedProjection>, ir0| {
-                light_shared(g, lighting, shared, &vertices, (&indices, quad), base, ir0)
+            let (normals, normal_of) = normal_table(&vertices);
+            let mut cache = vec![LitNormal::default(); normals.len()];
+            let vertex_color = |g: &mut Geometry, cache: &mut Vec<LitNormal>, ir0| {
+                light_shared(g, lighting, cache, (&normals, &normal_of), (&indices, quad), base, ir0)
             };
-            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
-            prop_assert_eq!(emit(&mut g, &face, (s.xy, s.sz), color, (None, None)).ot_index, otz);
+            prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
+            prop_assert_eq!(emit(&mut g, &face, (s.xy, s.sz), color, (None, None), uv).ot_index, otz);
             // Once more from the lit vertices, then after they were faded by another factor.
-            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
+            prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
             let other = I4F12::from_bits(other_ir0);
             g.gte_mut().write_data(8, other_ir0 as i32 as u32);
             let other_color = light(&mut g, lighting, &face, base, other);
-            prop_assert_eq!(vertex_color(&mut g, &mut shared, other), other_color);
-            prop_assert_eq!(vertex_color(&mut g, &mut shared, s.ir0), color);
+            prop_assert_eq!(vertex_color(&mut g, &mut cache, other), other_color);
+            prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
         }
     }
 

@@ -29,7 +29,7 @@ use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
 use gte::DivideMode;
 use gte::typed::Geometry;
-use gte_stage::{ProjectedFace, SharedProjection};
+use gte_stage::{LitNormal, ProjectedFace, SharedProjection, normal_table};
 use object::{PreparedObject, prepare_indexed};
 use std::fmt;
 use std::time::{Duration, Instant};
@@ -262,8 +262,10 @@ pub struct Renderer {
     precise_vertices: Vec<[SubpixelVertex; 4]>,
     /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
     trace: Option<Box<trace::TraceSink>>,
-    /// The current object's vertices after RTPS, and their colours once lit.
+    /// The current object's vertices after RTPS.
     shared: Vec<SharedProjection>,
+    /// The current object's distinct normals, and their colours once lit.
+    lit_normals: Vec<LitNormal>,
     /// Every face through its own RTPT/RTPS (the path split faces take), no vertex shared:
     /// the reference the shared-vertex path is tested against.
     per_polygon: bool,
@@ -338,10 +340,14 @@ impl Renderer {
                 let depth = scene.textures.get(t)?.texture.depth;
                 Some((*placements.get(t)?, depth))
             });
+            let (normals, normal_of) = normal_table(&mesh.vertices);
             objects.push(PreparedObject {
+                texels: mesh.faces.iter().map(|f| f.v.map(|v| v.texel())).collect(),
                 faces: mesh.faces,
                 vertices: mesh.vertices,
                 indices: mesh.indices,
+                normals,
+                normal_of,
                 level,
                 texture,
             });
@@ -383,6 +389,7 @@ impl Renderer {
             precise_vertices: Vec::new(),
             trace: None,
             shared: Vec::with_capacity(most_vertices),
+            lit_normals: Vec::with_capacity(most_vertices),
             per_polygon: false,
         })
     }

@@ -16,6 +16,12 @@ pub(super) struct PreparedObject {
     /// For each of `faces`, its vertices' indices into `vertices` (the fourth 0 for a
     /// triangle).
     pub(super) indices: Vec<[u32; 4]>,
+    /// For each of `faces`, its vertices' texture coordinates rounded to whole texels.
+    pub(super) texels: Vec<[(u8, u8); 4]>,
+    /// The distinct normals of `vertices`, each lit once a frame.
+    pub(super) normals: Vec<Vector3>,
+    /// For each of `vertices`, its normal's index into `normals`.
+    pub(super) normal_of: Vec<u32>,
     pub(super) level: u8,
     pub(super) texture: Option<(Placement, gpu::TextureDepth)>,
 }
