@@ -33,26 +33,29 @@ pub(super) enum Verdict {
     },
 }
 
-/// Screen bounding box (min x, max x, min y, max y) of some vertices.
-fn bounds(points: &[(i16, i16)]) -> (i32, i32, i32, i32) {
-    points.iter().fold(
-        (i32::MAX, i32::MIN, i32::MAX, i32::MIN),
-        |(x0, x1, y0, y1), &(x, y)| {
-            let (x, y) = (i32::from(x), i32::from(y));
-            (x0.min(x), x1.max(x), y0.min(y), y1.max(y))
-        },
+/// Screen bounding box (min x, max x, min y, max y) of three vertices.
+#[inline(always)]
+fn bounds3(p: [(i16, i16); 3]) -> (i32, i32, i32, i32) {
+    let [a, b, c] = p.map(|(x, y)| (i32::from(x), i32::from(y)));
+    (
+        a.0.min(b.0).min(c.0),
+        a.0.max(b.0).max(c.0),
+        a.1.min(b.1).min(c.1),
+        a.1.max(b.1).max(c.1),
     )
 }
 
-/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (docs/hardware/gpu.md §3).
-fn gpu_drops(triangle: &[(i16, i16)]) -> bool {
-    let (x0, x1, y0, y1) = bounds(triangle);
+/// The GPU drops a triangle with any vertex pair |dx| >= 1024 or |dy| >= 512 (docs/hardware/gpu.md §3):
+/// the extent of its bounding box.
+#[inline(always)]
+fn gpu_drops((x0, x1, y0, y1): (i32, i32, i32, i32)) -> bool {
     x1 - x0 >= 1024 || y1 - y0 >= 512
 }
 
 /// The verdict for a projected polygon: FLAG of its RTPT/RTPS, the NCLIP area of its
 /// first three vertices, screen positions (the fourth unused for a triangle), screen Z and
 /// the IR0 the last projection left, on a `w` x `h` screen.
+#[inline]
 pub(super) fn classify(
     flag: Flag,
     area: i32,
@@ -68,13 +71,22 @@ pub(super) fn classify(
     if area <= 0 {
         return Verdict::Cull;
     }
-    let corners = if quad { &xy[..] } else { &xy[..3] };
-    let (x0, x1, y0, y1) = bounds(corners);
+    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (docs/hardware/gpu.md §3).
+    let first = bounds3([xy[0], xy[1], xy[2]]);
+    let second = quad.then(|| bounds3([xy[1], xy[2], xy[3]]));
+    let (x0, x1, y0, y1) = match second {
+        Some(s) => (
+            first.0.min(s.0),
+            first.1.max(s.1),
+            first.2.min(s.2),
+            first.3.max(s.3),
+        ),
+        None => first,
+    };
     if x1 < 0 || x0 >= w || y1 < 0 || y0 >= h {
         return Verdict::Offscreen;
     }
-    // A quad is drawn as the triangles v0 v1 v2 and v1 v2 v3 (docs/hardware/gpu.md §3).
-    if gpu_drops(&xy[..3]) || (quad && gpu_drops(&xy[1..])) {
+    if gpu_drops(first) || second.is_some_and(gpu_drops) {
         return Verdict::Drop(super::trace::DropCause::SizeLimit);
     }
     Verdict::Draw {

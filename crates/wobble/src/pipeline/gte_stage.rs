@@ -16,7 +16,8 @@ use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Vecto
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct ProjectedFace {
     pub(super) xy: [(i16, i16); 4],
-    pub(super) color: [[u8; 3]; 4],
+    /// Vertex colours as GP0 colour words: R in bits 0-7, G 8-15, B 16-23.
+    pub(super) color: [u32; 4],
     pub(super) uv: [(u8, u8); 4],
     pub(super) quad: bool,
     pub(super) ot_index: u16,
@@ -107,14 +108,15 @@ pub(super) struct LitNormal {
     /// What `color` was computed for: the IR0 bits NCDS faded it by (0 for NCCS, which
     /// does not fade), or [`UNLIT`].
     lit: i32,
-    color: [u8; 3],
+    /// R in bits 0-7, G 8-15, B 16-23.
+    color: u32,
 }
 
 impl Default for LitNormal {
     fn default() -> Self {
         Self {
             lit: UNLIT,
-            color: [0; 3],
+            color: 0,
         }
     }
 }
@@ -272,8 +274,8 @@ fn light_shared(
     (indices, quad): (&[u32; 4], bool),
     base: [u8; 3],
     ir0: I4F12,
-) -> [[u8; 3]; 4] {
-    let mut color = [base; 4];
+) -> [u32; 4] {
+    let mut color = [rgb_word(base); 4];
     match (lit, fogged) {
         (true, _) => {
             let key = if fogged { i32::from(ir0.to_bits()) } else { 0 };
@@ -288,7 +290,7 @@ fn light_shared(
                 };
                 if entry.lit != key {
                     let normal = normals.get(m as usize).copied().unwrap_or_default();
-                    entry.color = if fogged {
+                    entry.color = rgb_word(if fogged {
                         if !ir0_loaded {
                             g.gte_mut().write_data(8, ir0.to_bits() as i32 as u32);
                             ir0_loaded = true;
@@ -296,16 +298,21 @@ fn light_shared(
                         g.normal_color_depth(normal, base)
                     } else {
                         g.normal_color_color(normal, base)
-                    };
+                    });
                     entry.lit = key;
                 }
                 *c = entry.color;
             }
         }
-        (false, true) => color = [g.depth_cue(base, ir0); 4],
+        (false, true) => color = [rgb_word(g.depth_cue(base, ir0)); 4],
         (false, false) => {}
     }
     color
+}
+
+/// An 8-bit RGB colour as a GP0 colour word (R in bits 0-7, G 8-15, B 16-23).
+pub(super) fn rgb_word([r, g, b]: [u8; 3]) -> u32 {
+    u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
 }
 
 /// The precise rasterizer's vertices: whole-pixel or sub-pixel positions and 1/Z.
@@ -334,7 +341,7 @@ fn emit(
     g: &mut Geometry,
     face: &PreparedFace,
     (xy, sz): ([(i16, i16); 4], [u16; 4]),
-    color: [[u8; 3]; 4],
+    color: [u32; 4],
     (texture, blend): (Option<(u32, u32)>, Option<u8>),
     uv: [(u8, u8); 4],
 ) -> ProjectedFace {
@@ -487,7 +494,7 @@ impl Renderer {
                                 object.color,
                                 ir0,
                             ),
-                            None => light(g, lighting, face, object.color, ir0),
+                            None => light(g, lighting, face, object.color, ir0).map(rgb_word),
                         };
                         if options.precise() {
                             precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
@@ -674,7 +681,7 @@ mod tests {
 
             let t = transform(&mut g, &face, false);
             let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, quad, screen);
-            let color = light(&mut g, lighting, &face, base, t.ir0);
+            let color = light(&mut g, lighting, &face, base, t.ir0).map(rgb_word);
             let uv = face.v.map(|p| p.texel());
             let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None), uv).ot_index;
 
@@ -700,7 +707,7 @@ mod tests {
             prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
             let other = I4F12::from_bits(other_ir0);
             g.gte_mut().write_data(8, other_ir0 as i32 as u32);
-            let other_color = light(&mut g, lighting, &face, base, other);
+            let other_color = light(&mut g, lighting, &face, base, other).map(rgb_word);
             prop_assert_eq!(vertex_color(&mut g, &mut cache, other), other_color);
             prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
         }

@@ -24,8 +24,7 @@ impl ProjectedFace {
         }
         let mut len = 0;
         for i in 0..n {
-            let [r, g, b] = self.color[i];
-            let rgb = r as u32 | (g as u32) << 8 | (b as u32) << 16;
+            let rgb = self.color[i];
             if i == 0 {
                 out[len] = op << 24 | rgb;
                 len += 1;
