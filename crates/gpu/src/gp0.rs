@@ -564,20 +564,79 @@ impl Gpu {
         }
     }
 
+    /// [`polygon_packet`] for the packet being executed: the texpage attribute's bits are
+    /// written into the draw mode in place (docs/hardware/gpu.md §2), and the triangles are
+    /// decoded from fixed word positions.
+    #[inline(always)]
+    fn decode_polygon(&mut self, p: &[u32; MAX_PACKET]) -> (Triangle, Option<Triangle>) {
+        let cmd = p[0];
+        let gouraud = cmd & (1 << 28) != 0;
+        let quad = cmd & (1 << 27) != 0;
+        let has_uv = cmd & (1 << 26) != 0;
+        let semi = cmd & (1 << 25) != 0;
+        let raw = cmd & (1 << 24) != 0;
+        // Vertex n > 0 starts with its colour word when Gouraud; position, then UV word.
+        let per_vertex = 1 + usize::from(has_uv) + usize::from(gouraud);
+        let at = |n: usize| -> (u32, u32, u32) {
+            let start = if n == 0 {
+                0
+            } else {
+                1 + usize::from(has_uv) + (n - 1) * per_vertex
+            };
+            let word = |i: usize| p.get(i).copied().unwrap_or(0);
+            let rgb = if n > 0 && gouraud {
+                word(start + 1)
+            } else {
+                cmd
+            };
+            let pos = start + 1 + usize::from(n > 0 && gouraud);
+            (rgb, word(pos), if has_uv { word(pos + 1) } else { 0 })
+        };
+        let draw = &self.draw;
+        let vertex = |(rgb, pos, uv): (u32, u32, u32)| {
+            let mut v = Gpu::vertex(draw, pos, rgb);
+            v.u = uv as u8;
+            v.v = (uv >> 8) as u8;
+            v
+        };
+        let (w0, w1, w2) = (at(0), at(1), at(2));
+        let verts = [vertex(w0), vertex(w1), vertex(w2)];
+        let fourth = quad.then(|| vertex(at(3)));
+        if has_uv {
+            self.draw.mode.set_texpage(w1.2 >> 16);
+            if !self.texture_disable_allowed {
+                self.draw.mode.texture_disable = false;
+            }
+        }
+        let mode = &self.draw.mode;
+        let textured = has_uv && textures_enabled(mode, self.texture_disable_allowed);
+        let first = Triangle {
+            vertices: verts,
+            gouraud,
+            texture: textured.then(|| texture(mode, w0.2 >> 16, raw)),
+            blend: semi.then_some(mode.blend),
+            dither: mode.dither && dither_applies(gouraud, textured, raw),
+        };
+        let second = fourth.map(|d| Triangle {
+            vertices: [verts[1], verts[2], d],
+            ..first
+        });
+        (first, second)
+    }
+
     fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         let gouraud = cmd & (1 << 28) != 0;
         let semi = cmd & (1 << 25) != 0;
-        let packet = polygon_packet(p, &self.draw, self.texture_disable_allowed);
-        self.draw.mode = packet.mode;
-        let tri = packet.first;
+        let (tri, second) = self.decode_polygon(p);
+        let packet_second = second;
         let textured = tri.texture.is_some();
         let clut_units = tri
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let read_back = semi || self.draw.mask.check;
         let rows = self.draw_rows();
-        if let Some(second) = &packet.second
+        if let Some(second) = &packet_second
             && let Some(drawn) = draw_tiled_quad(&mut self.vram, &self.draw, &tri, second, rows)
         {
             // Both triangles' set-up; the pixels, each drawn by one of them, once.
@@ -588,7 +647,7 @@ impl Gpu {
         let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
-        if let Some(second) = &packet.second {
+        if let Some(second) = &packet_second {
             let drawn =
                 draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, second, rows);
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
@@ -642,6 +701,33 @@ impl Gpu {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// A polygon packet decoded in place (the draw mode rewritten by its texpage
+        /// attribute) gives the triangles and draw mode [`polygon_packet`] gives, for every
+        /// polygon command, random words and any draw mode, offset and GP1(09h) setting.
+        #[test]
+        fn in_place_decode_matches_polygon_packet(
+            op in 0x20u32..0x40,
+            words in proptest::array::uniform12(any::<u32>()),
+            e1 in any::<u32>(),
+            offset in any::<u32>(),
+            allowed in any::<bool>(),
+        ) {
+            let mut g = Gpu::new();
+            g.texture_disable_allowed = allowed;
+            apply_environment(&mut g.draw, 0xE100_0000 | (e1 & 0xFF_FFFF), allowed);
+            apply_environment(&mut g.draw, 0xE500_0000 | (offset & 0xFF_FFFF), allowed);
+            let mut p = words;
+            p[0] = op << 24 | (p[0] & 0xFF_FFFF);
+            let expected = polygon_packet(&p, &g.draw, allowed);
+            let (first, second) = g.decode_polygon(&p);
+            prop_assert_eq!(first, expected.first);
+            prop_assert_eq!(second, expected.second);
+            prop_assert_eq!(g.draw.mode, expected.mode);
+        }
+    }
 
     /// A flat quad's drawing cost is both triangles' set-up plus one unit per pixel drawn
     /// (docs/emulator.md, "Drawing time": 82 + 46 + pixels), whether its triangles tile a

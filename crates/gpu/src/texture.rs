@@ -121,19 +121,19 @@ impl ClutCache {
 
     /// [`ClutCache::latch`] for a 4-bit texture modulated by the one colour `rgb` and
     /// dithered, and the latched entries shaded for every dither cell: kept from an earlier
-    /// primitive with the same colour and entries, else shaded now when `build` or when the
-    /// previous request was for the same colour, else `None`.
+    /// primitive with the same colour and entries, else shaded now when the previous request
+    /// was for the same colour or `build` says so, else `None`.
     pub(crate) fn latch_dithered(
         &mut self,
         vram: &[u16; crate::VRAM_LEN],
         texture: &Texture,
         rgb: [u8; 3],
-        build: bool,
+        build: impl FnOnce() -> bool,
     ) -> (&[u16; 256], Option<&DitheredCells>) {
         self.latch(vram, texture);
         let d = &mut self.dithered;
         let repeated = d.requested.replace(rgb) == Some(rgb);
-        if d.color != Some(rgb) && (build || repeated) {
+        if d.color != Some(rgb) && (repeated || build()) {
             crate::rasterizer::dithered_clut4(&self.entries, rgb, &mut d.cells);
             d.color = Some(rgb);
         }

@@ -546,20 +546,23 @@ pub fn classify_rectangle(rect: &Rectangle, area: &DrawingArea) -> Coverage {
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.
 static NO_CLUT: [u16; 256] = [0; 256];
 
-/// A primitive's pixel environment, its texture's CLUT latched. `dithered` asks, for a
-/// dithered 4-bit texture under one colour, for that colour's [`PixelEnv::dithered`] table,
-/// and whether to shade it when the CLUT cache does not hold it.
+/// A primitive's pixel environment, its texture's CLUT latched. `dithered`, for a dithered
+/// 4-bit triangle under one colour, asks for that colour's [`PixelEnv::dithered`] table,
+/// shaded when the CLUT cache does not hold it if the triangle is large enough
+/// ([`worth_shading`]).
 fn env<'a>(
     vram: &[u16; VRAM_LEN],
     state: &DrawState,
     clut: &'a mut ClutCache,
     texture: Option<&Texture>,
     blend: Option<BlendMode>,
-    dithered: Option<([u8; 3], bool)>,
+    dithered: Option<&Triangle>,
 ) -> PixelEnv<'a> {
     let (page_x, page_y) = texture.map_or((0, 0), |t| (t.page_x as usize, t.page_y as usize));
     let (clut, dithered) = match (texture, dithered) {
-        (Some(t), Some((rgb, build))) => clut.latch_dithered(vram, t, rgb, build),
+        (Some(t), Some(tri)) => {
+            clut.latch_dithered(vram, t, tri.vertices[0].color, || worth_shading(tri))
+        }
         (Some(t), None) => (clut.latch(vram, t), None),
         (None, _) => (clut.entries(), None),
     };
@@ -578,19 +581,22 @@ fn env<'a>(
 /// pixels; smaller ones shade pixel by pixel.
 const DITHERED_CLUT_PIXELS: i32 = 256;
 
-/// For a flat, modulated, dithered 4-bit triangle: its colour, and whether it is large
-/// enough to shade its CLUT for every dither cell (see [`DITHERED_CLUT_PIXELS`]).
-fn dithered_request(tri: &Triangle) -> Option<([u8; 3], bool)> {
-    let wanted = texture_kind(tri.texture.as_ref()) == 1
+/// Whether a triangle is large enough to pay for shading its CLUT for every dither cell
+/// (see [`DITHERED_CLUT_PIXELS`]).
+fn worth_shading(tri: &Triangle) -> bool {
+    let [a, b, c] = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
+    let w = a.0.max(b.0).max(c.0) - a.0.min(b.0).min(c.0);
+    let h = a.1.max(b.1).max(c.1) - a.1.min(b.1).min(c.1);
+    w * h >= 2 * DITHERED_CLUT_PIXELS
+}
+
+/// Whether a triangle is flat, modulated, dithered and 4-bit textured: one colour over a
+/// 4-bit CLUT in every dither cell.
+fn dithered_clut4_triangle(tri: &Triangle) -> bool {
+    texture_kind(tri.texture.as_ref()) == 1
         && !tri.gouraud
         && tri.dither
-        && !tri.texture.is_some_and(|t| t.raw);
-    wanted.then(|| {
-        let [a, b, c] = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
-        let w = a.0.max(b.0).max(c.0) - a.0.min(b.0).min(c.0);
-        let h = a.1.max(b.1).max(c.1) - a.1.min(b.1).min(c.1);
-        (tri.vertices[0].color, w * h >= 2 * DITHERED_CLUT_PIXELS)
-    })
+        && !tri.texture.is_some_and(|t| t.raw)
 }
 
 /// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
@@ -604,7 +610,7 @@ pub(crate) fn draw_triangle_rows(
 ) -> DrawCount {
     let vram = vram.as_array_mut();
     let line;
-    let dithered = dithered_request(tri);
+    let dithered = dithered_clut4_triangle(tri).then_some(tri);
     let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend, dithered);
     if tri.texture.is_none()
         && !tri.gouraud
