@@ -481,8 +481,13 @@ impl Gpu {
         };
         buf.copy_from_slice(packet);
         self.drawing.receive_words(takes_fifo_space(head), n as u32);
-        let packet = self.gp0.buf;
-        let units = self.execute(&packet);
+        // The packet executes from its own copy of the words (the buffer keeps them, as
+        // word-by-word input leaves them there).
+        let mut words = [0u32; MAX_PACKET];
+        if let Some(head) = words.get_mut(..n) {
+            head.copy_from_slice(packet);
+        }
+        let units = self.execute(&words);
         self.drawing.complete(units_to_gpu(units as u64));
         n
     }
