@@ -146,19 +146,30 @@ pub(super) fn normal_table(vertices: &[SharedVertex]) -> (Vec<Vector3>, Vec<u32>
 /// One RTPS per shared vertex of an object, as games run RTPS/RTPT over a vertex list into
 /// a scratch buffer. Each vertex gets its SXY, SZ, IR0 and FLAG from its own command: what
 /// RTPT leaves for it, as its steps 5.1-5.6 run per vertex (docs/hardware/gte.md §5).
+///
+/// As a game's loop does it: V0 loaded (VXY0, VZ0), RTPS, then SXY2, SZ3, IR0 and FLAG read
+/// back from their registers.
 fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<SharedProjection>) {
     out.clear();
+    let gte = g.gte_mut();
     out.extend(vertices.iter().map(|v| {
-        let p = g.project(v.position);
+        let p = v.position;
+        gte.write_data(0, u32::from(p.x as u16) | u32::from(p.y as u16) << 16);
+        gte.write_data(1, p.z as i32 as u32);
+        gte.execute(RTPS);
+        let sxy = gte.read_data(14);
         SharedProjection {
-            xy: (p.x, p.y),
-            sxy: u32::from(p.x as u16) | u32::from(p.y as u16) << 16,
-            sz: p.sz,
-            ir0: p.ir0,
-            flag: p.flag,
+            xy: (sxy as u16 as i16, (sxy >> 16) as u16 as i16),
+            sxy,
+            sz: gte.read_data(19) as u16,
+            ir0: I4F12::from_bits(gte.read_data(8) as u16 as i16),
+            flag: gte.flag(),
         }
     }));
 }
+
+/// The RTPS command word (sf = 1, as [`Geometry::project`] issues it).
+const RTPS: u32 = gte::typed::command(gte::Opcode::Rtps);
 
 /// A mesh face's vertices from their RTPS, and NCLIP on the first three loaded into SXY0-2.
 ///
@@ -168,6 +179,7 @@ fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<Sha
 /// saturation and MAC0 flags) for its last vertex only, RTPS for each, so those bits may
 /// differ and are not read. IR0 is the last vertex's, SXY and SZ the vertices' own, and
 /// NCLIP is a function of SXY0-2 alone (§7).
+#[inline(always)]
 fn transform_shared(
     g: &mut Geometry,
     shared: &[SharedProjection],
@@ -275,18 +287,17 @@ fn light_shared(
     base: [u8; 3],
     ir0: I4F12,
 ) -> [u32; 4] {
-    let mut color = [rgb_word(base); 4];
+    let flat = rgb_word(base);
     match (lit, fogged) {
         (true, _) => {
             let key = if fogged { i32::from(ir0.to_bits()) } else { 0 };
             let mut ir0_loaded = false;
-            let n = if quad { 4 } else { 3 };
-            for (c, &i) in color.iter_mut().zip(indices).take(n) {
+            let mut vertex = |i: u32| {
                 let Some(&m) = normal_of.get(i as usize) else {
-                    continue;
+                    return flat;
                 };
                 let Some(entry) = cache.get_mut(m as usize) else {
-                    continue;
+                    return flat;
                 };
                 if entry.lit != key {
                     let normal = normals.get(m as usize).copied().unwrap_or_default();
@@ -301,13 +312,16 @@ fn light_shared(
                     });
                     entry.lit = key;
                 }
-                *c = entry.color;
-            }
+                entry.color
+            };
+            // The four words are made in registers and returned as one value.
+            let [a, b, c] = [vertex(indices[0]), vertex(indices[1]), vertex(indices[2])];
+            let d = if quad { vertex(indices[3]) } else { flat };
+            [a, b, c, d]
         }
-        (false, true) => color = [rgb_word(g.depth_cue(base, ir0)); 4],
-        (false, false) => {}
+        (false, true) => [rgb_word(g.depth_cue(base, ir0)); 4],
+        (false, false) => [flat; 4],
     }
-    color
 }
 
 /// An 8-bit RGB colour as a GP0 colour word (R in bits 0-7, G 8-15, B 16-23).
