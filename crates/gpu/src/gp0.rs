@@ -481,13 +481,17 @@ impl Gpu {
         };
         buf.copy_from_slice(packet);
         self.drawing.receive_words(takes_fifo_space(head), n as u32);
-        // The packet executes from its own copy of the words (the buffer keeps them, as
-        // word-by-word input leaves them there).
-        let mut words = [0u32; MAX_PACKET];
-        if let Some(head) = words.get_mut(..n) {
-            head.copy_from_slice(packet);
-        }
-        let units = self.execute(&words);
+        // The packet executes from the words given (the buffer keeps a copy, as word-by-word
+        // input leaves them there); a polygon reads them where they are.
+        let units = if matches!(head >> 24, 0x20..=0x3F) {
+            self.polygon(packet)
+        } else {
+            let mut words = [0u32; MAX_PACKET];
+            if let Some(head) = words.get_mut(..n) {
+                head.copy_from_slice(packet);
+            }
+            self.execute(&words)
+        };
         self.drawing.complete(units_to_gpu(units as u64));
         n
     }
@@ -573,7 +577,7 @@ impl Gpu {
     /// written into the draw mode in place (docs/hardware/gpu.md §2), and the triangles are
     /// decoded from fixed word positions.
     #[inline(always)]
-    fn decode_polygon(&mut self, p: &[u32; MAX_PACKET]) -> (Triangle, Option<Triangle>) {
+    fn decode_polygon(&mut self, p: &[u32]) -> (Triangle, Option<Triangle>) {
         let cmd = p[0];
         let gouraud = cmd & (1 << 28) != 0;
         let quad = cmd & (1 << 27) != 0;
@@ -629,8 +633,10 @@ impl Gpu {
         (first, second)
     }
 
-    fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        let cmd = p[0];
+    /// Execute a polygon packet, `p` holding at least its words; returns its cost in draw
+    /// units.
+    fn polygon(&mut self, p: &[u32]) -> u32 {
+        let cmd = p.first().copied().unwrap_or(0);
         let gouraud = cmd & (1 << 28) != 0;
         let semi = cmd & (1 << 25) != 0;
         let (tri, second) = self.decode_polygon(p);
