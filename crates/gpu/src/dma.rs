@@ -79,6 +79,10 @@ pub(crate) trait ListMemory {
     fn word(&self, addr: u32) -> Option<u32>;
     /// The address of the `i`-th word after `addr` (wrapping as the memory does).
     fn offset(&self, addr: u32, i: u32) -> u32;
+    /// Whether the `count` words after the header at `addr` all lie in the memory.
+    fn node_present(&self, addr: u32, count: u32) -> bool {
+        (1..=count).all(|i| self.word(self.offset(addr, i)).is_some())
+    }
 }
 
 /// Main RAM as bytes: addresses mirror every 2 MiB.
@@ -104,6 +108,16 @@ impl ListMemory for WordImage<'_> {
     }
     fn offset(&self, addr: u32, i: u32) -> u32 {
         addr.wrapping_add(i.wrapping_mul(4)) & 0xFF_FFFF
+    }
+    /// A header inside an image of at most 2 Mi words (8 MiB) is followed by at most 255
+    /// words that stay below address 1000000h and so do not wrap: they are present when the
+    /// last one is.
+    fn node_present(&self, addr: u32, count: u32) -> bool {
+        if self.0.len() <= 1 << 21 && (addr / 4) < 1 << 21 {
+            (addr / 4) as usize + (count as usize) < self.0.len()
+        } else {
+            (1..=count).all(|i| self.word(self.offset(addr, i)).is_some())
+        }
     }
 }
 
@@ -139,7 +153,7 @@ pub(crate) fn walk_nodes<M: ListMemory>(
             return (WalkEnd::BadLink(addr), nodes);
         };
         let count = header >> 24;
-        if (1..=count).any(|i| mem.word(mem.offset(addr, i)).is_none()) {
+        if !mem.node_present(addr, count) {
             return (WalkEnd::BadLink(addr), nodes);
         }
         nodes += 1;
