@@ -189,6 +189,12 @@ impl<'a> Sampler<'a> {
         }
     }
 
+    /// Whether the texture window leaves U and V as they are (mask 0).
+    #[inline(always)]
+    pub fn window_is_identity(&self) -> bool {
+        self.u_and == 0xFF && self.u_or == 0 && self.v_and == 0xFF && self.v_or == 0
+    }
+
     /// The 4-bit texel index (a CLUT entry number) at (u, v), after the texture window; X
     /// wraps at 1024 (docs/hardware/gpu.md §7).
     #[inline(always)]

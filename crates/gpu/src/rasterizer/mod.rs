@@ -188,11 +188,8 @@ pub(crate) fn shade_pixel<
         (c, BLEND, 0)
     } else if let Some(lut) = lut {
         let e = lut[env.sampler.index4(vram, u, v)];
-        if e == 0 {
-            return;
-        }
-        let t = e as u16;
-        (t & 0x7FFF, BLEND && t & 0x8000 != 0, t & 0x8000)
+        write_shaded::<BLEND, MASK_CHECK>(vram, index, e, env.mask_or, env.blend);
+        return;
     } else {
         let t = env.sampler.fetch(TEX, vram, u, v);
         if t == 0 {
@@ -220,6 +217,34 @@ pub(crate) fn shade_pixel<
         color
     };
     vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
+}
+
+/// Write one pixel of a primitive whose texel colours come shaded from a table
+/// ([`shaded_clut4`], [`dithered_clut4`]): `e` is the texel's entry, 0 for a transparent
+/// texel (the pixel is left alone), else `10000h | colour | texel bit 15`; blending per texel
+/// bit 15 with `mode`, mask check, and `mask_or` as [`shade_pixel`] does (docs/hardware/gpu.md
+/// §6).
+#[inline(always)]
+pub(crate) fn write_shaded<const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    index: usize,
+    e: u32,
+    mask_or: u16,
+    mode: BlendMode,
+) {
+    let dst = vram[index & (VRAM_LEN - 1)];
+    if e == 0 || (MASK_CHECK && dst & 0x8000 != 0) {
+        return;
+    }
+    let t = e as u16;
+    let (color, bit15) = (t & 0x7FFF, t & 0x8000);
+    let color = if BLEND {
+        let keep = 0u16.wrapping_sub(u16::from(bit15 == 0));
+        (blend(mode, dst, color) & !keep) | (color & keep)
+    } else {
+        color
+    };
+    vram[index & (VRAM_LEN - 1)] = color | bit15 | mask_or;
 }
 
 /// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (docs/hardware/gpu.md §3.4, §4).

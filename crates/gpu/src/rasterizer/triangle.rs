@@ -207,6 +207,16 @@ pub(super) fn draw<
             )
         });
     let lanes = groups.then(|| span::LaneSteps::new(step));
+    // A 4-bit page under the identity window whose 64 halfwords and 256 lines lie inside
+    // VRAM without wrapping: texel (u, v) is the halfword at this index plus v * 1024 + u / 4.
+    let plain_page = (TEX == 1 && env.sampler.window_is_identity()).then(|| {
+        let s = &env.sampler;
+        s.page_y * VRAM_WIDTH + s.page_x
+    });
+    let plain_page = plain_page.filter(|_| {
+        let s = &env.sampler;
+        s.page_x + 64 <= VRAM_WIDTH && s.page_y + 256 <= 512
+    });
 
     // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
     // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
@@ -289,17 +299,39 @@ pub(super) fn draw<
                     }
                     let span = (row, y, x_start, x_end);
                     // One copy of the pixel loop per table kind, chosen per span.
-                    match dithered {
-                        Some(cells) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+                    match (dithered, plain_page) {
+                        (Some(cells), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true>(
                             vram,
-                            span,
-                            acc,
-                            step,
-                            flat,
-                            &env,
-                            Some(&cells[(y & 3) as usize]),
+                            (row, x_start, x_end),
+                            (acc[3], acc[4]),
+                            (step[3], step[4]),
+                            page,
+                            (&cells[(y & 3) as usize], &env.lut),
+                            (env.mask_or, env.blend),
                         ),
-                        None => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+                        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
+                            clut4_span::<BLEND, MASK_CHECK, false>(
+                                vram,
+                                (row, x_start, x_end),
+                                (acc[3], acc[4]),
+                                (step[3], step[4]),
+                                page,
+                                (&NO_CELLS, &env.lut),
+                                (env.mask_or, env.blend),
+                            )
+                        }
+                        (Some(cells), None) => {
+                            pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+                                vram,
+                                span,
+                                acc,
+                                step,
+                                flat,
+                                &env,
+                                Some(&cells[(y & 3) as usize]),
+                            )
+                        }
+                        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
                             vram, span, acc, step, flat, &env, None,
                         ),
                     }
@@ -369,6 +401,36 @@ fn pixels<
                 acc[i] = acc[i].wrapping_add(step[i]);
             }
         }
+    }
+}
+
+/// The dither cells of a span that reads the one undithered table.
+static NO_CELLS: [[u32; 16]; 4] = [[0; 16]; 4];
+
+/// Shade `[x_start, x_end)` of the VRAM line at `row` for a 4-bit texture under one colour,
+/// the identity window and a page inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
+/// its texel's CLUT entry read from a shaded table, that of its dither cell among this line's
+/// four (`CELLS`, [`super::dithered_clut4`]) or the one undithered table
+/// ([`super::shaded_clut4`]); the texel index is read from the halfword
+/// `page + v * 1024 + u / 4`. U and V start at `uv` and step by `duv` (8.24).
+#[inline(always)]
+fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    (row, x_start, x_end): (usize, i32, i32),
+    (mut u, mut v): (u32, u32),
+    (du, dv): (u32, u32),
+    page: usize,
+    (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
+    (mask_or, blend): (u16, crate::state::BlendMode),
+) {
+    for x in x_start..x_end {
+        let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
+        let word = vram[(page + tv * VRAM_WIDTH + (tu >> 2)) & (VRAM_LEN - 1)];
+        let table = if CELLS { &cells[(x & 3) as usize] } else { lut };
+        let e = table[usize::from((word >> ((tu & 3) * 4)) & 0xF)];
+        super::write_shaded::<BLEND, MASK_CHECK>(vram, row + x as usize, e, mask_or, blend);
+        u = u.wrapping_add(du);
+        v = v.wrapping_add(dv);
     }
 }
 
