@@ -82,6 +82,7 @@ impl Divisor {
 }
 
 /// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), i32 maths with truncating division.
+#[inline(always)]
 fn gradient(v: &[Vtx; 3], i: usize, den: Divisor) -> (u32, u32) {
     let (a, b, c) = (&v[0], &v[1], &v[2]);
     let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
