@@ -31,9 +31,11 @@ pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
 #[derive(Clone, Default)]
 struct DitheredClut4 {
     color: Option<[u8; 3]>,
-    /// The colour the previous request asked for: a second primitive in a row with one
-    /// colour has the table shaded, whatever its size.
+    /// The colour the previous request asked for, and how many requests in a row asked for
+    /// it: the third primitive in a row with one colour has the table shaded, whatever its
+    /// size (the two triangles of one quad alone do not).
     requested: Option<[u8; 3]>,
+    run: u8,
     cells: DitheredCells,
 }
 
@@ -121,8 +123,8 @@ impl ClutCache {
 
     /// [`ClutCache::latch`] for a 4-bit texture modulated by the one colour `rgb` and
     /// dithered, and the latched entries shaded for every dither cell: kept from an earlier
-    /// primitive with the same colour and entries, else shaded now when the previous request
-    /// was for the same colour or `build` says so, else `None`.
+    /// primitive with the same colour and entries, else shaded now when the two requests
+    /// before were for the same colour or `build` says so, else `None`.
     pub(crate) fn latch_dithered(
         &mut self,
         vram: &[u16; crate::VRAM_LEN],
@@ -132,8 +134,12 @@ impl ClutCache {
     ) -> (&[u16; 256], Option<&DitheredCells>) {
         self.latch(vram, texture);
         let d = &mut self.dithered;
-        let repeated = d.requested.replace(rgb) == Some(rgb);
-        if d.color != Some(rgb) && (repeated || build()) {
+        d.run = if d.requested.replace(rgb) == Some(rgb) {
+            d.run.saturating_add(1)
+        } else {
+            1
+        };
+        if d.color != Some(rgb) && (d.run >= 3 || build()) {
             crate::rasterizer::dithered_clut4(&self.entries, rgb, &mut d.cells);
             d.color = Some(rgb);
         }
