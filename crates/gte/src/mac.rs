@@ -81,7 +81,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_mac(&mut self, n: usize, sum: i64, shift: u32) -> i32 {
         let mac = (sum >> shift) as i32;
-        self.regs.mac[n] = mac;
+        self.regs.set_mac(n, mac);
         mac
     }
 
@@ -101,7 +101,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) {
         let v = self.saturate_ir(n, value, lm);
-        self.regs.ir[n] = v;
+        self.regs.set_ir(n, v);
     }
 
     /// The common tail of a matrix-vector row: MACn from the sum, IRn from MACn.
@@ -115,7 +115,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_mac0(&mut self, value: i64) {
         self.flag_mac0(value);
-        self.regs.mac[0] = value as i32;
+        self.regs.set_mac(0, value as i32);
     }
 
     /// FLAG bits 16/15 for a MAC0-path value.
@@ -132,9 +132,9 @@ impl Gte {
     /// R | G << 8 | B << 16 | CODE << 24 (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn push_color(&mut self) {
-        let mut packed = self.regs.rgbc & 0xFF00_0000;
+        let mut packed = self.regs.rgbc() & 0xFF00_0000;
         for n in 1..=3 {
-            let (c, saturated) = clamp((self.regs.mac[n] >> 4) as i64, 0, 0xFF);
+            let (c, saturated) = clamp((self.regs.mac(n) >> 4) as i64, 0, 0xFF);
             if saturated {
                 self.flag_bits |= bit::color(n);
             }
