@@ -31,6 +31,7 @@ impl Gte {
     }
 
     /// DPCS: depth-cue the RGBC colour.
+    #[inline]
     pub(crate) fn dpcs(&mut self, shift: u32, lm: bool) {
         let input = Self::color_input(self.regs.rgbc());
         self.depth_cue_interpolate(input, shift, lm);
@@ -47,6 +48,7 @@ impl Gte {
     }
 
     /// DCPL: depth-cue (RGBC * IR) << 4.
+    #[inline]
     pub(crate) fn dcpl(&mut self, shift: u32, lm: bool) {
         let input = self.color_times_ir();
         self.depth_cue_interpolate(input, shift, lm);
@@ -54,6 +56,7 @@ impl Gte {
     }
 
     /// INTPL: interpolate IR << 12 towards FC.
+    #[inline]
     pub(crate) fn intpl(&mut self, shift: u32, lm: bool) {
         let input = self.ir_vector().map(|v| v << 12);
         self.depth_cue_interpolate(input, shift, lm);
@@ -61,6 +64,7 @@ impl Gte {
     }
 
     /// GPF: MACn = (IRn * IR0) SAR sf.
+    #[inline]
     pub(crate) fn gpf(&mut self, shift: u32, lm: bool) {
         let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();
@@ -72,6 +76,7 @@ impl Gte {
     }
 
     /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf.
+    #[inline]
     pub(crate) fn gpl(&mut self, shift: u32, lm: bool) {
         let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();

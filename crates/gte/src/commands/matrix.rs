@@ -42,6 +42,7 @@ impl Gte {
     }
 
     /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
         let m = match c.mx() {
             MatrixSel::Rotation => widen(&self.regs.rt()),
@@ -87,6 +88,7 @@ impl Gte {
     }
 
     /// SQR: MACn = IRn^2 SAR sf, IRn by lm (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn sqr(&mut self, shift: u32, lm: bool) {
         let ir = self.ir_vector();
         for (n, v) in ir.into_iter().enumerate() {
@@ -96,6 +98,7 @@ impl Gte {
     }
 
     /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn op(&mut self, shift: u32, lm: bool) {
         let rt = self.regs.rt();
         let d = [rt[0][0] as i64, rt[1][1] as i64, rt[2][2] as i64];
