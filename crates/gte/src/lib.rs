@@ -27,6 +27,8 @@ pub mod unr;
 pub use command::{Command, MatrixSel, Opcode, TranslationSel, VectorSel, cycles};
 pub use flag::Flag;
 pub use registers::{REGISTER_NAMES, Registers};
+
+use registers::RegisterFile;
 pub use state::{GteState, StateError};
 pub use unr::{DivideMode, UnsupportedDivideMode};
 
@@ -58,7 +60,7 @@ pub use unr::{DivideMode, UnsupportedDivideMode};
 /// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Gte {
-    regs: Registers,
+    regs: RegisterFile,
     divide_mode: DivideMode,
     /// FLAG bits collected while a command runs.
     flag_bits: u32,
@@ -117,12 +119,12 @@ impl Gte {
     /// The FLAG register as a typed set.
     #[inline]
     pub fn flag(&self) -> Flag {
-        self.regs.flag
+        self.regs.flag()
     }
 
-    /// The register file as stored, for inspection.
-    pub fn registers(&self) -> &Registers {
-        &self.regs
+    /// The register file field by field, as stored, for inspection.
+    pub fn registers(&self) -> Registers {
+        self.regs.snapshot()
     }
 
     /// The whole engine state (registers as stored and the divide mode), read without any
@@ -130,7 +132,7 @@ impl Gte {
     pub fn state(&self) -> GteState {
         GteState {
             version: GteState::VERSION,
-            registers: self.regs.clone(),
+            registers: self.regs.snapshot(),
             divide_mode: self.divide_mode,
         }
     }
@@ -153,8 +155,7 @@ impl Gte {
                 state.divide_mode,
             )));
         }
-        self.regs = state.registers.clone();
-        self.regs.flag = Flag::from_bits(self.regs.flag.bits());
+        self.regs = RegisterFile::from_snapshot(&state.registers);
         self.divide_mode = state.divide_mode;
         Ok(())
     }
@@ -276,11 +277,11 @@ impl Gte {
                 Opcode::Ncct
             }
             _ => {
-                self.regs.flag = Flag::EMPTY;
+                self.regs.set_flag(Flag::EMPTY);
                 return None;
             }
         };
-        self.regs.flag = Flag::from_bits(self.flag_bits);
+        self.regs.set_flag(Flag::from_bits(self.flag_bits));
         Some(op.cycles())
     }
 }

@@ -8,6 +8,9 @@ pub const MAC_MAX: i64 = (1 << 43) - 1;
 /// Smallest 44-bit accumulator value, -2^43.
 pub const MAC_MIN: i64 = -(1 << 43);
 
+/// Largest magnitude of one product added into MAC1-3: a 16-bit by 16-bit product, 2^30.
+const PRODUCT_MAX: i64 = 1 << 30;
+
 /// Wrap to 44-bit two's complement.
 pub const fn wrap44(value: i64) -> i64 {
     (value << 20) >> 20
@@ -62,8 +65,17 @@ impl Gte {
     /// Accumulate into MACn (n = 1..3): start from `start` (an add-vector component already
     /// shifted left 12, or 0), add each product in turn, flag and wrap to 44 bits after every
     /// addition (docs/hardware/gte.md §4). Returns the wrapped 44-bit sum.
+    ///
+    /// Every product is at most 2^30 in magnitude (a 16-bit by 16-bit product, or less), so
+    /// when `start` lies far enough inside the 44-bit range no partial sum can leave it: the
+    /// sum is then plain addition, with no flag and no wrap. With `start` 0 that holds always.
     #[inline(always)]
     pub(crate) fn accumulate(&mut self, n: usize, start: i64, products: &[i64]) -> i64 {
+        debug_assert!(products.iter().all(|p| p.abs() <= PRODUCT_MAX));
+        let margin = products.len() as i64 * PRODUCT_MAX;
+        if start >= MAC_MIN + margin && start <= MAC_MAX - margin {
+            return products.iter().fold(start, |sum, &p| sum + p);
+        }
         let mut sum = start;
         for &p in products {
             sum += p;
@@ -81,7 +93,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_mac(&mut self, n: usize, sum: i64, shift: u32) -> i32 {
         let mac = (sum >> shift) as i32;
-        self.regs.mac[n] = mac;
+        self.regs.set_mac(n, mac);
         mac
     }
 
@@ -101,7 +113,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) {
         let v = self.saturate_ir(n, value, lm);
-        self.regs.ir[n] = v;
+        self.regs.set_ir(n, v);
     }
 
     /// The common tail of a matrix-vector row: MACn from the sum, IRn from MACn.
@@ -115,7 +127,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn set_mac0(&mut self, value: i64) {
         self.flag_mac0(value);
-        self.regs.mac[0] = value as i32;
+        self.regs.set_mac(0, value as i32);
     }
 
     /// FLAG bits 16/15 for a MAC0-path value.
@@ -132,9 +144,9 @@ impl Gte {
     /// R | G << 8 | B << 16 | CODE << 24 (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn push_color(&mut self) {
-        let mut packed = self.regs.rgbc & 0xFF00_0000;
+        let mut packed = self.regs.rgbc() & 0xFF00_0000;
         for n in 1..=3 {
-            let (c, saturated) = clamp((self.regs.mac[n] >> 4) as i64, 0, 0xFF);
+            let (c, saturated) = clamp((self.regs.mac(n) >> 4) as i64, 0, 0xFF);
             if saturated {
                 self.flag_bits |= bit::color(n);
             }

@@ -16,9 +16,10 @@ pub const REGISTER_NAMES: [&str; 64] = [
     "H", "DQA", "DQB", "ZSF3", "ZSF4", "FLAG",
 ];
 
-/// The register file as the hardware stores it (16-bit registers keep 16 bits), without the
-/// side effects of MTC2/CTC2 (docs/hardware/gte.md §2): setting a field changes that field
-/// only. Part of a [`GteState`](crate::GteState).
+/// The register file field by field, as the hardware stores it (16-bit registers keep 16
+/// bits), without the side effects of MTC2/CTC2 (docs/hardware/gte.md §2): setting a field
+/// changes that field only. Read with [`Gte::registers`](crate::Gte::registers); part of a
+/// [`GteState`](crate::GteState).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Registers {
@@ -114,76 +115,137 @@ pub(crate) const fn irgb(ir: [i16; 4]) -> u32 {
     c(ir[1]) | (c(ir[2]) << 5) | (c(ir[3]) << 10)
 }
 
-#[inline]
-fn read_matrix(m: &Matrix, index: u32) -> u32 {
-    match index {
-        0 => pack(m[0][0], m[0][1]),
-        1 => pack(m[0][2], m[1][0]),
-        2 => pack(m[1][1], m[1][2]),
-        3 => pack(m[2][0], m[2][1]),
-        _ => sext(m[2][2]),
+/// How a register holds a written word and gives it back (docs/hardware/gte.md §2): all 32
+/// bits, or the low 16 bits read back sign- or zero-extended.
+#[derive(Clone, Copy)]
+enum Width {
+    Word,
+    Signed16,
+    Unsigned16,
+}
+
+use Width::{Signed16 as S16, Unsigned16 as U16, Word as W32};
+
+/// Data registers r0-r31. r15 (SXYP), r28 (IRGB), r29 (ORGB), r30 (LZCS) and r31 (LZCR) have
+/// side effects or computed reads and are handled apart; their entries here are unused.
+const DATA_WIDTH: [Width; 32] = [
+    W32, S16, W32, S16, W32, S16, // VXY0, VZ0, VXY1, VZ1, VXY2, VZ2
+    W32, U16, // RGBC, OTZ
+    S16, S16, S16, S16, // IR0-IR3
+    W32, W32, W32, W32, // SXY0-SXY2, SXYP
+    U16, U16, U16, U16, // SZ0-SZ3
+    W32, W32, W32, W32, // RGB0-RGB2, RES1
+    W32, W32, W32, W32, // MAC0-MAC3
+    W32, W32, W32, W32, // IRGB, ORGB, LZCS, LZCR
+];
+
+/// Control registers c0-c31: the odd halves of the matrices (RT33, L33, LB3), H, DQA, ZSF3
+/// and ZSF4 are 16-bit and read sign-extended (H too, although the maths uses it unsigned).
+/// c31 (FLAG) is handled apart.
+const CONTROL_WIDTH: [Width; 32] = [
+    W32, W32, W32, W32, S16, // RT
+    W32, W32, W32, // TRX, TRY, TRZ
+    W32, W32, W32, W32, S16, // LLM
+    W32, W32, W32, // RBK, GBK, BBK
+    W32, W32, W32, W32, S16, // LCM
+    W32, W32, W32, // RFC, GFC, BFC
+    W32, W32, S16, S16, W32, S16, S16, // OFX, OFY, H, DQA, DQB, ZSF3, ZSF4
+    W32, // FLAG
+];
+
+/// Per register, the mask and sign bit that turn a written word into the stored value:
+/// `((value & mask) ^ sign) - sign` sign-extends from bit 15 when `sign` is 8000h.
+const fn extension(widths: [Width; 32]) -> ([u32; 32], [u32; 32]) {
+    let (mut mask, mut sign) = ([u32::MAX; 32], [0; 32]);
+    let mut r = 0;
+    while r < 32 {
+        match widths[r] {
+            Width::Word => {}
+            Width::Signed16 => (mask[r], sign[r]) = (0xFFFF, 0x8000),
+            Width::Unsigned16 => mask[r] = 0xFFFF,
+        }
+        r += 1;
+    }
+    (mask, sign)
+}
+
+const DATA_EXTENSION: ([u32; 32], [u32; 32]) = extension(DATA_WIDTH);
+const CONTROL_EXTENSION: ([u32; 32], [u32; 32]) = extension(CONTROL_WIDTH);
+
+/// Data registers whose MTC2 does more than store: SXYP, IRGB, ORGB, LZCS, LZCR.
+const DATA_WRITE_SPECIAL: u32 = 1 << 15 | 1 << 28 | 1 << 29 | 1 << 30 | 1 << 31;
+/// Data registers whose MFC2 is not the stored word: SXYP, IRGB, ORGB.
+const DATA_READ_SPECIAL: u32 = 1 << 15 | 1 << 28 | 1 << 29;
+/// Control register FLAG, whose CTC2 keeps bits 12-30 and recomputes bit 31.
+const FLAG: usize = 31;
+
+#[inline(always)]
+fn extend(value: u32, (mask, sign): (&[u32; 32], &[u32; 32]), r: usize) -> u32 {
+    ((value & mask[r]) ^ sign[r]).wrapping_sub(sign[r])
+}
+
+/// The register file as the engine keeps it: every register as the word MFC2/CFC2 reads
+/// (docs/hardware/gte.md §2), so that an MTC2/CTC2 is one masked store and an MFC2/CFC2 one
+/// load, whatever the register number, with no dispatch on it. The exceptions are the
+/// registers with side effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG), tested by one bit mask.
+/// Commands read and write the fields through the typed accessors below.
+#[derive(Clone, Default, PartialEq, Eq)]
+pub(crate) struct RegisterFile {
+    /// r0-r31; r15, r28 and r29 are never stored (their reads are computed).
+    data: [u32; 32],
+    /// c0-c31.
+    control: [u32; 32],
+}
+
+impl core::fmt::Debug for RegisterFile {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        self.snapshot().fmt(f)
     }
 }
 
-#[inline]
-fn write_matrix(m: &mut Matrix, index: u32, value: u32) {
-    match index {
-        0 => (m[0][0], m[0][1]) = (lo(value), hi(value)),
-        1 => (m[0][2], m[1][0]) = (lo(value), hi(value)),
-        2 => (m[1][1], m[1][2]) = (lo(value), hi(value)),
-        3 => (m[2][0], m[2][1]) = (lo(value), hi(value)),
-        _ => m[2][2] = lo(value),
-    }
-}
-
-impl Registers {
+impl RegisterFile {
     /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn read_data(&self, reg: u32) -> u32 {
-        match reg & 31 {
-            r @ (0 | 2 | 4) => pack(self.v[r as usize / 2][0], self.v[r as usize / 2][1]),
-            r @ (1 | 3 | 5) => sext(self.v[r as usize / 2][2]),
-            6 => self.rgbc,
-            7 => self.otz as u32,
-            r @ 8..=11 => sext(self.ir[(r - 8) as usize]),
-            r @ 12..=14 => self.sxy[(r - 12) as usize],
-            15 => self.sxy[2],
-            r @ 16..=19 => self.sz[(r - 16) as usize] as u32,
-            r @ 20..=22 => self.rgb[(r - 20) as usize],
-            23 => self.res1,
-            r @ 24..=27 => self.mac[(r - 24) as usize] as u32,
-            28 | 29 => irgb(self.ir),
-            30 => self.lzcs,
-            _ => self.lzcr,
+        let r = (reg & 31) as usize;
+        if DATA_READ_SPECIAL >> r & 1 != 0 {
+            return self.read_data_special(r);
+        }
+        self.data[r]
+    }
+
+    fn read_data_special(&self, r: usize) -> u32 {
+        match r {
+            // SXYP reads as SXY2.
+            15 => self.data[14],
+            // IRGB and ORGB read IR1-3 packed.
+            _ => irgb([0, self.ir(1), self.ir(2), self.ir(3)]),
         }
     }
 
     /// MTC2: write data register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn write_data(&mut self, reg: u32, value: u32) {
-        match reg & 31 {
-            r @ (0 | 2 | 4) => {
-                self.v[r as usize / 2][0] = lo(value);
-                self.v[r as usize / 2][1] = hi(value);
-            }
-            r @ (1 | 3 | 5) => self.v[r as usize / 2][2] = lo(value),
-            6 => self.rgbc = value,
-            7 => self.otz = value as u16,
-            r @ 8..=11 => self.ir[(r - 8) as usize] = lo(value),
-            r @ 12..=14 => self.sxy[(r - 12) as usize] = value,
+        let r = (reg & 31) as usize;
+        if DATA_WRITE_SPECIAL >> r & 1 != 0 {
+            return self.write_data_special(r, value);
+        }
+        let (mask, sign) = &DATA_EXTENSION;
+        self.data[r] = extend(value, (mask, sign), r);
+    }
+
+    fn write_data_special(&mut self, r: usize, value: u32) {
+        match r {
             15 => self.push_sxy(value),
-            r @ 16..=19 => self.sz[(r - 16) as usize] = value as u16,
-            r @ 20..=22 => self.rgb[(r - 20) as usize] = value,
-            23 => self.res1 = value,
-            r @ 24..=27 => self.mac[(r - 24) as usize] = value as i32,
+            // IRGB sets IR1-3 to each 5-bit field << 7.
             28 => {
-                self.ir[1] = ((value & 0x1F) << 7) as i16;
-                self.ir[2] = (((value >> 5) & 0x1F) << 7) as i16;
-                self.ir[3] = (((value >> 10) & 0x1F) << 7) as i16;
+                for n in 1..=3 {
+                    self.data[8 + n] = ((value >> (5 * (n - 1))) & 0x1F) << 7;
+                }
             }
             30 => {
-                self.lzcs = value;
-                self.lzcr = leading_sign_bits(value);
+                self.data[30] = value;
+                self.data[31] = leading_sign_bits(value);
             }
             // ORGB (r29) and LZCR (r31) ignore writes.
             _ => {}
@@ -193,65 +255,278 @@ impl Registers {
     /// CFC2: read control register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn read_control(&self, reg: u32) -> u32 {
-        match reg & 31 {
-            r @ 0..=4 => read_matrix(&self.rt, r),
-            r @ 5..=7 => self.tr[(r - 5) as usize] as u32,
-            r @ 8..=12 => read_matrix(&self.llm, r - 8),
-            r @ 13..=15 => self.bk[(r - 13) as usize] as u32,
-            r @ 16..=20 => read_matrix(&self.lcm, r - 16),
-            r @ 21..=23 => self.fc[(r - 21) as usize] as u32,
-            24 => self.ofx as u32,
-            25 => self.ofy as u32,
-            26 => sext(self.h as i16),
-            27 => sext(self.dqa),
-            28 => self.dqb as u32,
-            29 => sext(self.zsf3),
-            30 => sext(self.zsf4),
-            _ => self.flag.bits(),
-        }
+        self.control[(reg & 31) as usize]
     }
 
     /// CTC2: write control register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn write_control(&mut self, reg: u32, value: u32) {
-        match reg & 31 {
-            r @ 0..=4 => write_matrix(&mut self.rt, r, value),
-            r @ 5..=7 => self.tr[(r - 5) as usize] = value as i32,
-            r @ 8..=12 => write_matrix(&mut self.llm, r - 8, value),
-            r @ 13..=15 => self.bk[(r - 13) as usize] = value as i32,
-            r @ 16..=20 => write_matrix(&mut self.lcm, r - 16, value),
-            r @ 21..=23 => self.fc[(r - 21) as usize] = value as i32,
-            24 => self.ofx = value as i32,
-            25 => self.ofy = value as i32,
-            26 => self.h = value as u16,
-            27 => self.dqa = lo(value),
-            28 => self.dqb = value as i32,
-            29 => self.zsf3 = lo(value),
-            30 => self.zsf4 = lo(value),
-            _ => self.flag = Flag::from_bits(value),
-        }
+        let r = (reg & 31) as usize;
+        let (mask, sign) = &CONTROL_EXTENSION;
+        self.control[r] = if r == FLAG {
+            Flag::from_bits(value).bits()
+        } else {
+            extend(value, (mask, sign), r)
+        };
+    }
+
+    /// Vertex Vn (n = 0..2): X, Y, Z.
+    #[inline(always)]
+    pub(crate) fn v(&self, n: usize) -> [i16; 3] {
+        let xy = self.data[2 * n];
+        [lo(xy), hi(xy), lo(self.data[2 * n + 1])]
+    }
+
+    /// RGBC (r6).
+    #[inline(always)]
+    pub(crate) fn rgbc(&self) -> u32 {
+        self.data[6]
+    }
+
+    /// OTZ (r7).
+    #[inline(always)]
+    pub(crate) fn set_otz(&mut self, value: u16) {
+        self.data[7] = value as u32;
+    }
+
+    /// IRn (n = 0..3).
+    #[inline(always)]
+    pub(crate) fn ir(&self, n: usize) -> i16 {
+        lo(self.data[8 + n])
+    }
+
+    /// Set IRn (n = 0..3).
+    #[inline(always)]
+    pub(crate) fn set_ir(&mut self, n: usize, value: i16) {
+        self.data[8 + n] = sext(value);
+    }
+
+    /// Screen X and Y of SXYn (n = 0..2) as signed halves.
+    #[inline(always)]
+    pub(crate) fn sxy(&self, n: usize) -> (i16, i16) {
+        let v = self.data[12 + n];
+        (lo(v), hi(v))
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn push_sxy(&mut self, value: u32) {
-        self.sxy = [self.sxy[1], self.sxy[2], value];
+        self.data[12] = self.data[13];
+        self.data[13] = self.data[14];
+        self.data[14] = value;
+    }
+
+    /// SZn (n = 0..3).
+    #[inline(always)]
+    pub(crate) fn sz(&self, n: usize) -> u16 {
+        self.data[16 + n] as u16
     }
 
     /// Push a value onto the screen Z FIFO (SZ0 <- SZ1 <- SZ2 <- SZ3 <- value).
+    #[inline(always)]
     pub(crate) fn push_sz(&mut self, value: u16) {
-        self.sz = [self.sz[1], self.sz[2], self.sz[3], value];
+        self.data[16] = self.data[17];
+        self.data[17] = self.data[18];
+        self.data[18] = self.data[19];
+        self.data[19] = value as u32;
+    }
+
+    /// RGBn (n = 0..2).
+    #[inline(always)]
+    pub(crate) fn rgb(&self, n: usize) -> u32 {
+        self.data[20 + n]
     }
 
     /// Push a colour onto the colour FIFO (RGB0 <- RGB1 <- RGB2 <- value).
+    #[inline(always)]
     pub(crate) fn push_rgb(&mut self, value: u32) {
-        self.rgb = [self.rgb[1], self.rgb[2], value];
+        self.data[20] = self.data[21];
+        self.data[21] = self.data[22];
+        self.data[22] = value;
     }
 
-    /// Screen X and Y of SXYn as signed halves.
-    pub(crate) fn sxy_at(&self, n: usize) -> (i16, i16) {
-        let v = self.sxy[n % 3];
-        (lo(v), hi(v))
+    /// MACn (n = 0..3).
+    #[inline(always)]
+    pub(crate) fn mac(&self, n: usize) -> i32 {
+        self.data[24 + n] as i32
+    }
+
+    /// Set MACn (n = 0..3).
+    #[inline(always)]
+    pub(crate) fn set_mac(&mut self, n: usize, value: i32) {
+        self.data[24 + n] = value as u32;
+    }
+
+    /// The matrix stored in the five control registers from `base` (RT c0, LLM c8, LCM c16),
+    /// row-major: 11 | 12 << 16, 13 | 21 << 16, 22 | 23 << 16, 31 | 32 << 16, 33.
+    #[inline(always)]
+    fn matrix(&self, base: usize) -> Matrix {
+        let c = |k: usize| self.control[base + k];
+        [
+            [lo(c(0)), hi(c(0)), lo(c(1))],
+            [hi(c(1)), lo(c(2)), hi(c(2))],
+            [lo(c(3)), hi(c(3)), lo(c(4))],
+        ]
+    }
+
+    /// The three 32-bit words from control register `base`.
+    #[inline(always)]
+    fn vector(&self, base: usize) -> [i32; 3] {
+        [
+            self.control[base] as i32,
+            self.control[base + 1] as i32,
+            self.control[base + 2] as i32,
+        ]
+    }
+
+    /// Rotation matrix RT (c0-c4).
+    #[inline(always)]
+    pub(crate) fn rt(&self) -> Matrix {
+        self.matrix(0)
+    }
+
+    /// Translation TR (c5-c7).
+    #[inline(always)]
+    pub(crate) fn tr(&self) -> [i32; 3] {
+        self.vector(5)
+    }
+
+    /// Light matrix LLM (c8-c12).
+    #[inline(always)]
+    pub(crate) fn llm(&self) -> Matrix {
+        self.matrix(8)
+    }
+
+    /// Background colour BK (c13-c15).
+    #[inline(always)]
+    pub(crate) fn bk(&self) -> [i32; 3] {
+        self.vector(13)
+    }
+
+    /// Light colour matrix LCM (c16-c20).
+    #[inline(always)]
+    pub(crate) fn lcm(&self) -> Matrix {
+        self.matrix(16)
+    }
+
+    /// Far colour FC (c21-c23).
+    #[inline(always)]
+    pub(crate) fn fc(&self) -> [i32; 3] {
+        self.vector(21)
+    }
+
+    /// Screen offsets OFX, OFY (c24, c25), 16.16.
+    #[inline(always)]
+    pub(crate) fn offset(&self) -> (i32, i32) {
+        (self.control[24] as i32, self.control[25] as i32)
+    }
+
+    /// Projection plane distance H (c26), unsigned in the maths.
+    #[inline(always)]
+    pub(crate) fn h(&self) -> u16 {
+        self.control[26] as u16
+    }
+
+    /// Depth-cue coefficient DQA (c27) and offset DQB (c28).
+    #[inline(always)]
+    pub(crate) fn depth_cue(&self) -> (i16, i32) {
+        (lo(self.control[27]), self.control[28] as i32)
+    }
+
+    /// AVSZ3 and AVSZ4 scales ZSF3, ZSF4 (c29, c30).
+    #[inline(always)]
+    pub(crate) fn zsf(&self) -> (i16, i16) {
+        (lo(self.control[29]), lo(self.control[30]))
+    }
+
+    /// FLAG (c31).
+    #[inline(always)]
+    pub(crate) fn flag(&self) -> Flag {
+        Flag::from_bits(self.control[FLAG])
+    }
+
+    /// Set FLAG (c31).
+    #[inline(always)]
+    pub(crate) fn set_flag(&mut self, flag: Flag) {
+        self.control[FLAG] = flag.bits();
+    }
+
+    /// The registers as stored, field by field.
+    pub(crate) fn snapshot(&self) -> Registers {
+        let d = &self.data;
+        let matrix = |base| self.matrix(base);
+        Registers {
+            v: [self.v(0), self.v(1), self.v(2)],
+            rgbc: d[6],
+            otz: d[7] as u16,
+            ir: [self.ir(0), self.ir(1), self.ir(2), self.ir(3)],
+            sxy: [d[12], d[13], d[14]],
+            sz: [self.sz(0), self.sz(1), self.sz(2), self.sz(3)],
+            rgb: [d[20], d[21], d[22]],
+            res1: d[23],
+            mac: [self.mac(0), self.mac(1), self.mac(2), self.mac(3)],
+            lzcs: d[30],
+            lzcr: d[31],
+            rt: matrix(0),
+            tr: self.tr(),
+            llm: matrix(8),
+            bk: self.bk(),
+            lcm: matrix(16),
+            fc: self.fc(),
+            ofx: self.offset().0,
+            ofy: self.offset().1,
+            h: self.h(),
+            dqa: self.depth_cue().0,
+            dqb: self.depth_cue().1,
+            zsf3: self.zsf().0,
+            zsf4: self.zsf().1,
+            flag: self.flag(),
+        }
+    }
+
+    /// A register file holding `r` exactly, without the side effects of MTC2/CTC2; FLAG keeps
+    /// what the hardware can hold (as [`Flag::from_bits`]).
+    pub(crate) fn from_snapshot(r: &Registers) -> RegisterFile {
+        let mut f = RegisterFile::default();
+        let d = &mut f.data;
+        for n in 0..3 {
+            d[2 * n] = pack(r.v[n][0], r.v[n][1]);
+            d[2 * n + 1] = sext(r.v[n][2]);
+            d[12 + n] = r.sxy[n];
+            d[20 + n] = r.rgb[n];
+        }
+        d[6] = r.rgbc;
+        d[7] = r.otz as u32;
+        for n in 0..4 {
+            d[8 + n] = sext(r.ir[n]);
+            d[16 + n] = r.sz[n] as u32;
+            d[24 + n] = r.mac[n] as u32;
+        }
+        d[23] = r.res1;
+        d[30] = r.lzcs;
+        d[31] = r.lzcr;
+        let c = &mut f.control;
+        for (base, m) in [(0, &r.rt), (8, &r.llm), (16, &r.lcm)] {
+            c[base] = pack(m[0][0], m[0][1]);
+            c[base + 1] = pack(m[0][2], m[1][0]);
+            c[base + 2] = pack(m[1][1], m[1][2]);
+            c[base + 3] = pack(m[2][0], m[2][1]);
+            c[base + 4] = sext(m[2][2]);
+        }
+        for (base, v) in [(5, &r.tr), (13, &r.bk), (21, &r.fc)] {
+            for n in 0..3 {
+                c[base + n] = v[n] as u32;
+            }
+        }
+        c[24] = r.ofx as u32;
+        c[25] = r.ofy as u32;
+        c[26] = sext(r.h as i16);
+        c[27] = sext(r.dqa);
+        c[28] = r.dqb as u32;
+        c[29] = sext(r.zsf3);
+        c[30] = sext(r.zsf4);
+        c[FLAG] = Flag::from_bits(r.flag.bits()).bits();
+        f
     }
 }
 

@@ -381,10 +381,10 @@ impl Geometry {
     /// truncation (docs/hardware/gte.md §5 step 6), saturated as [`SubpixelProjected`] says.
     pub fn project_subpixel(&mut self, v: Vector3) -> SubpixelProjected {
         let projected = self.project(v);
-        let regs = self.gte.registers();
+        let regs = &self.gte.regs;
         // The quotient RTPS used: H and the saturated SZ3 it pushed
         // (docs/hardware/gte.md §5 steps 4-5).
-        let (q, _) = crate::unr::divide(self.gte.divide_mode(), regs.h, projected.sz);
+        let (q, _) = crate::unr::divide(self.gte.divide_mode(), regs.h(), projected.sz);
         let q = q as i64;
         let fine = |ir: i16, offset: i32| {
             let value = q * ir as i64 + offset as i64;
@@ -392,8 +392,8 @@ impl Geometry {
         };
         SubpixelProjected {
             projected,
-            x: fine(regs.ir[1], regs.ofx),
-            y: fine(regs.ir[2], regs.ofy),
+            x: fine(regs.ir(1), regs.offset().0),
+            y: fine(regs.ir(2), regs.offset().1),
         }
     }
 

@@ -249,6 +249,15 @@ proptest! {
         let mut gte = Gte::new();
         let sext = value as u16 as i16 as i32 as u32;
         let zext = value & 0xFFFF;
+        // 32-bit registers keep every bit.
+        for r in [0, 2, 4, 6, 12, 13, 14, 20, 21, 22, 23, 24, 25, 26, 27, 30] {
+            gte.write_data(r, value);
+            prop_assert_eq!(gte.read_data(r), value, "r{}", r);
+        }
+        for r in (0..=28).filter(|r| ![4, 12, 20, 26, 27].contains(r)) {
+            gte.write_control(r, value);
+            prop_assert_eq!(gte.read_control(r), value, "c{}", r);
+        }
         for r in [1, 3, 5, 8, 9, 10, 11] {
             gte.write_data(r, value);
             prop_assert_eq!(gte.read_data(r), sext, "r{}", r);

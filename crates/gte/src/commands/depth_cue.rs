@@ -8,12 +8,12 @@ impl Gte {
     /// is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm.
     #[inline(always)]
     pub(crate) fn depth_cue_interpolate(&mut self, input: [i64; 3], shift: u32, lm: bool) {
-        let fc = self.regs.fc;
+        let fc = self.regs.fc();
         for n in 1..=3 {
             let sum = self.accumulate(n, (fc[n - 1] as i64) << 12, &[-input[n - 1]]);
             self.set_mac_ir(n, sum, shift, false);
         }
-        let ir0 = self.regs.ir[0] as i64;
+        let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();
         for n in 1..=3 {
             let sum = self.accumulate(n, input[n - 1], &[ir[n - 1] * ir0]);
@@ -31,8 +31,9 @@ impl Gte {
     }
 
     /// DPCS: depth-cue the RGBC colour.
+    #[inline]
     pub(crate) fn dpcs(&mut self, shift: u32, lm: bool) {
-        let input = Self::color_input(self.regs.rgbc);
+        let input = Self::color_input(self.regs.rgbc());
         self.depth_cue_interpolate(input, shift, lm);
         self.push_color();
     }
@@ -40,13 +41,14 @@ impl Gte {
     /// DPCT: DPCS three times on RGB0, the FIFO bottom, re-read after each push (docs/hardware/gte.md §8).
     pub(crate) fn dpct(&mut self, shift: u32, lm: bool) {
         for _ in 0..3 {
-            let input = Self::color_input(self.regs.rgb[0]);
+            let input = Self::color_input(self.regs.rgb(0));
             self.depth_cue_interpolate(input, shift, lm);
             self.push_color();
         }
     }
 
     /// DCPL: depth-cue (RGBC * IR) << 4.
+    #[inline]
     pub(crate) fn dcpl(&mut self, shift: u32, lm: bool) {
         let input = self.color_times_ir();
         self.depth_cue_interpolate(input, shift, lm);
@@ -54,6 +56,7 @@ impl Gte {
     }
 
     /// INTPL: interpolate IR << 12 towards FC.
+    #[inline]
     pub(crate) fn intpl(&mut self, shift: u32, lm: bool) {
         let input = self.ir_vector().map(|v| v << 12);
         self.depth_cue_interpolate(input, shift, lm);
@@ -61,8 +64,9 @@ impl Gte {
     }
 
     /// GPF: MACn = (IRn * IR0) SAR sf.
+    #[inline]
     pub(crate) fn gpf(&mut self, shift: u32, lm: bool) {
-        let ir0 = self.regs.ir[0] as i64;
+        let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();
         for n in 1..=3 {
             let sum = self.accumulate(n, 0, &[ir[n - 1] * ir0]);
@@ -72,11 +76,12 @@ impl Gte {
     }
 
     /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf.
+    #[inline]
     pub(crate) fn gpl(&mut self, shift: u32, lm: bool) {
-        let ir0 = self.regs.ir[0] as i64;
+        let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();
         for n in 1..=3 {
-            let base = (self.regs.mac[n] as i64) << shift;
+            let base = (self.regs.mac(n) as i64) << shift;
             let sum = self.accumulate(n, base, &[ir[n - 1] * ir0]);
             self.set_mac_ir(n, sum, shift, lm);
         }

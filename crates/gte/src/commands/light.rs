@@ -7,8 +7,8 @@ impl Gte {
     /// The normal-colour steps for vertex Vi: IR = LLM * Vi, then IR = BK + LCM * IR.
     #[inline(always)]
     fn normal_light(&mut self, index: usize, shift: u32, lm: bool) {
-        let llm = widen(&self.regs.llm);
-        let v = self.regs.v[index].map(i64::from);
+        let llm = widen(&self.regs.llm());
+        let v = self.regs.v(index).map(i64::from);
         self.multiply_add(&llm, v, [0; 3], shift, lm);
         self.background_light(shift, lm);
     }
@@ -16,16 +16,16 @@ impl Gte {
     /// IR = BK + LCM * IR.
     #[inline(always)]
     fn background_light(&mut self, shift: u32, lm: bool) {
-        let lcm = widen(&self.regs.lcm);
+        let lcm = widen(&self.regs.lcm());
         let ir = self.ir_vector();
-        let bk = self.regs.bk.map(i64::from);
+        let bk = self.regs.bk().map(i64::from);
         self.multiply_add(&lcm, ir, bk, shift, lm);
     }
 
     /// (Cn * IRn) << 4 with Cn the RGBC colour bytes.
     #[inline(always)]
     pub(crate) fn color_times_ir(&self) -> [i64; 3] {
-        let c = self.regs.rgbc;
+        let c = self.regs.rgbc();
         let ir = self.ir_vector();
         [
             ((c & 0xFF) as i64 * ir[0]) << 4,

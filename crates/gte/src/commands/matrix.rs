@@ -35,35 +35,36 @@ impl Gte {
     /// IR1-3 widened.
     pub(crate) fn ir_vector(&self) -> [i64; 3] {
         [
-            self.regs.ir[1] as i64,
-            self.regs.ir[2] as i64,
-            self.regs.ir[3] as i64,
+            self.regs.ir(1) as i64,
+            self.regs.ir(2) as i64,
+            self.regs.ir(3) as i64,
         ]
     }
 
     /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
         let m = match c.mx() {
-            MatrixSel::Rotation => widen(&self.regs.rt),
-            MatrixSel::Light => widen(&self.regs.llm),
-            MatrixSel::LightColor => widen(&self.regs.lcm),
+            MatrixSel::Rotation => widen(&self.regs.rt()),
+            MatrixSel::Light => widen(&self.regs.llm()),
+            MatrixSel::LightColor => widen(&self.regs.lcm()),
             MatrixSel::Garbage => {
                 // Rows [-(R<<4), R<<4, IR0], [RT13]x3, [RT22]x3 (docs/hardware/gte.md §8).
-                let r = ((self.regs.rgbc & 0xFF) as i64) << 4;
-                let rt13 = self.regs.rt[0][2] as i64;
-                let rt22 = self.regs.rt[1][1] as i64;
-                [[-r, r, self.regs.ir[0] as i64], [rt13; 3], [rt22; 3]]
+                let r = ((self.regs.rgbc() & 0xFF) as i64) << 4;
+                let rt = self.regs.rt();
+                let (rt13, rt22) = (rt[0][2] as i64, rt[1][1] as i64);
+                [[-r, r, self.regs.ir(0) as i64], [rt13; 3], [rt22; 3]]
             }
         };
         let v = match c.v() {
-            VectorSel::V0 => self.regs.v[0].map(i64::from),
-            VectorSel::V1 => self.regs.v[1].map(i64::from),
-            VectorSel::V2 => self.regs.v[2].map(i64::from),
+            VectorSel::V0 => self.regs.v(0).map(i64::from),
+            VectorSel::V1 => self.regs.v(1).map(i64::from),
+            VectorSel::V2 => self.regs.v(2).map(i64::from),
             VectorSel::Ir => self.ir_vector(),
         };
         let t = match c.cv() {
-            TranslationSel::Translation => self.regs.tr.map(i64::from),
-            TranslationSel::Background => self.regs.bk.map(i64::from),
+            TranslationSel::Translation => self.regs.tr().map(i64::from),
+            TranslationSel::Background => self.regs.bk().map(i64::from),
             TranslationSel::FarColor => {
                 self.mvmva_far_color_bug(&m, v, shift, lm);
                 return;
@@ -76,7 +77,7 @@ impl Gte {
     /// cv=2: per row, FC<<12 + M_n1*V1 is formed and flagged (44-bit and an IR check with the
     /// lm=0 range) and discarded; the result is (M_n2*V2 + M_n3*V3) SAR sf (docs/hardware/gte.md §8).
     fn mvmva_far_color_bug(&mut self, m: &[[i64; 3]; 3], v: [i64; 3], shift: u32, lm: bool) {
-        let fc = self.regs.fc;
+        let fc = self.regs.fc();
         for row in 0..3 {
             let r = m[row];
             let discarded = self.accumulate(row + 1, (fc[row] as i64) << 12, &[r[0] * v[0]]);
@@ -87,6 +88,7 @@ impl Gte {
     }
 
     /// SQR: MACn = IRn^2 SAR sf, IRn by lm (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn sqr(&mut self, shift: u32, lm: bool) {
         let ir = self.ir_vector();
         for (n, v) in ir.into_iter().enumerate() {
@@ -96,12 +98,10 @@ impl Gte {
     }
 
     /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (docs/hardware/gte.md §8).
+    #[inline]
     pub(crate) fn op(&mut self, shift: u32, lm: bool) {
-        let d = [
-            self.regs.rt[0][0] as i64,
-            self.regs.rt[1][1] as i64,
-            self.regs.rt[2][2] as i64,
-        ];
+        let rt = self.regs.rt();
+        let d = [rt[0][0] as i64, rt[1][1] as i64, rt[2][2] as i64];
         let ir = self.ir_vector();
         let terms = [
             (ir[2] * d[1], ir[1] * d[2]),

@@ -53,9 +53,9 @@ impl Gte {
         lm: bool,
         depth_cue: bool,
     ) {
-        let v = self.regs.v[index];
-        let rt = self.regs.rt;
-        let tr = self.regs.tr;
+        let v = self.regs.v(index);
+        let rt = self.regs.rt();
+        let tr = self.regs.tr();
         let mut acc = [0i64; 3];
         for (row, acc) in acc.iter_mut().enumerate() {
             let m = rt[row];
@@ -76,7 +76,8 @@ impl Gte {
         self.set_ir(2, mac2, lm);
         // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
         let ir3_min = if lm { 0 } else { -0x8000 };
-        self.regs.ir[3] = clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16;
+        self.regs
+            .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
         let z = acc[2] >> 12;
         if clamp(z, -0x8000, 0x7FFF).1 {
             self.flag_bits |= bit::ir(3);
@@ -88,7 +89,7 @@ impl Gte {
         }
         self.regs.push_sz(sz3 as u16);
         // Divide (step 5).
-        let (h, sz3) = (self.regs.h, sz3 as u16);
+        let (h, sz3) = (self.regs.h(), sz3 as u16);
         let (q, overflow) = match MODE {
             UNR => unr::unr_divide(h, sz3),
             #[cfg(feature = "divide-modes")]
@@ -100,8 +101,9 @@ impl Gte {
         }
         let q = q as i64;
         // Screen position from the untruncated 64-bit value (step 6).
-        let x = q * self.regs.ir[1] as i64 + self.regs.ofx as i64;
-        let y = q * self.regs.ir[2] as i64 + self.regs.ofy as i64;
+        let (ofx, ofy) = self.regs.offset();
+        let x = q * self.regs.ir(1) as i64 + ofx as i64;
+        let y = q * self.regs.ir(2) as i64 + ofy as i64;
         self.flag_mac0(x);
         self.flag_mac0(y);
         let (sx, sx_sat) = clamp(x >> 16, -0x400, 0x3FF);
@@ -116,13 +118,14 @@ impl Gte {
             .push_sxy((sx as i16 as u16 as u32) | ((sy as i16 as u16 as u32) << 16));
         if depth_cue {
             // Depth cue (step 7).
-            let d = q * self.regs.dqa as i64 + self.regs.dqb as i64;
+            let (dqa, dqb) = self.regs.depth_cue();
+            let d = q * dqa as i64 + dqb as i64;
             self.set_mac0(d);
             let (ir0, saturated) = clamp(d >> 12, 0, 0x1000);
             if saturated {
                 self.flag_bits |= bit::IR0;
             }
-            self.regs.ir[0] = ir0 as i16;
+            self.regs.set_ir(0, ir0 as i16);
         }
     }
 }

@@ -6,29 +6,33 @@ use crate::mac::{bit, clamp};
 
 impl Gte {
     /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md §7).
+    #[inline]
     pub(crate) fn nclip(&mut self) {
-        let (x0, y0) = self.regs.sxy_at(0);
-        let (x1, y1) = self.regs.sxy_at(1);
-        let (x2, y2) = self.regs.sxy_at(2);
+        let (x0, y0) = self.regs.sxy(0);
+        let (x1, y1) = self.regs.sxy(1);
+        let (x2, y2) = self.regs.sxy(2);
         let (x0, y0, x1, y1, x2, y2) = (
             x0 as i64, y0 as i64, x1 as i64, y1 as i64, x2 as i64, y2 as i64,
         );
-        let area = x0 * y1 + x1 * y2 + x2 * y0 - x0 * y2 - x1 * y0 - x2 * y1;
+        // x0*y1 + x1*y2 + x2*y0 - x0*y2 - x1*y0 - x2*y1, grouped by X: the same integer.
+        let area = x0 * (y1 - y2) + x1 * (y2 - y0) + x2 * (y0 - y1);
         self.set_mac0(area);
     }
 
     /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
+    #[inline]
     pub(crate) fn avsz3(&mut self) {
-        let sz = self.regs.sz;
-        let sum = sz[1] as i64 + sz[2] as i64 + sz[3] as i64;
-        self.average_z(self.regs.zsf3 as i64 * sum);
+        let sz = |n| self.regs.sz(n) as i64;
+        let sum = sz(1) + sz(2) + sz(3);
+        self.average_z(self.regs.zsf().0 as i64 * sum);
     }
 
     /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
+    #[inline]
     pub(crate) fn avsz4(&mut self) {
-        let sz = self.regs.sz;
-        let sum = sz[0] as i64 + sz[1] as i64 + sz[2] as i64 + sz[3] as i64;
-        self.average_z(self.regs.zsf4 as i64 * sum);
+        let sz = |n| self.regs.sz(n) as i64;
+        let sum = sz(0) + sz(1) + sz(2) + sz(3);
+        self.average_z(self.regs.zsf().1 as i64 * sum);
     }
 
     fn average_z(&mut self, s: i64) {
@@ -37,6 +41,6 @@ impl Gte {
         if saturated {
             self.flag_bits |= bit::SZ3_OTZ;
         }
-        self.regs.otz = otz as u16;
+        self.regs.set_otz(otz as u16);
     }
 }
