@@ -180,7 +180,10 @@ impl Gte {
     /// clear FLAG and change nothing else (docs/gte.md, "Undefined opcodes").
     ///
     /// Returns the command's cycle count (docs/hardware/gte.md §1), or `None` for an undefined opcode.
-    #[inline]
+    ///
+    /// The opcode dispatch and the short commands compile into the caller (an emulator's COP2
+    /// handler), the long ones (RTPS/RTPT, the lighting commands) stay calls.
+    #[inline(always)]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let c = Command::new(command);
         let (shift, lm) = (c.shift(), c.lm());
