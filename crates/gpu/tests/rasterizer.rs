@@ -756,6 +756,40 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Flat lines inside the drawing area (each point one store) equal the §4 model, with
+    /// the mask bit E6h sets (docs/hardware/gpu.md §7) on every point.
+    #[test]
+    fn flat_lines_inside_the_area_match_model(
+        ends in prop::collection::vec((0i32..300, 0i32..200, any::<[u8; 3]>()), 2),
+        set_mask in any::<bool>(),
+    ) {
+        let mut g = Gpu::new();
+        g.gp0_words(&[
+            0xE300_0000,
+            0xE400_0000 | 299 | 199 << 10,
+            0xE500_0000,
+            0xE600_0000 | set_mask as u32,
+        ]);
+        let c = ends[0].2;
+        g.gp0_words(&[
+            0x4000_0000 | c[0] as u32 | (c[1] as u32) << 8 | (c[2] as u32) << 16,
+            xy(ends[0].0, ends[0].1),
+            xy(ends[1].0, ends[1].1),
+        ]);
+        let mut expected = gpu::Vram::new();
+        let e = |i: usize| (ends[i].0 as i64, ends[i].1 as i64, ends[i].2.map(|c| c as i64));
+        for (x, y, c) in model_line([e(0), e(1)], false, (0, 0, 299, 199)) {
+            let c = c.map(|c| model::channel(c as u32, x, y, false));
+            let mask = if set_mask { 0x8000 } else { 0 };
+            expected.set_pixel(x as usize, y as usize, c[0] | c[1] << 5 | c[2] << 10 | mask);
+        }
+        prop_assert!(*g.vram() == expected, "VRAM differs from the model");
+    }
+}
+
 /// A vertical Gouraud line is not swapped (x0 > x1 is false), so its colour is stepped from
 /// the first vertex (docs/hardware/gpu.md §4, Mednafen's `>`). Red 1 -> 14 over k = 6: step
 /// (13 << 12) / 6 = 8874, so at y = 3 the colour is (1 << 12 | 2048) + 3 * 8874 = 32766 -> 7

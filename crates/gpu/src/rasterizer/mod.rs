@@ -687,6 +687,16 @@ pub(crate) fn draw_line_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
+    let filtered = rows != Rows::All;
+    if !line.gouraud
+        && line.blend.is_none()
+        && !line.dither
+        && !state.mask.check
+        && !filtered
+        && let Some(drawn) = line::draw_flat_inside(vram, state, line)
+    {
+        return drawn;
+    }
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -701,7 +711,6 @@ pub(crate) fn draw_line_rows(
         state.mask.check,
     );
     use line::draw;
-    let filtered = rows != Rows::All;
     dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
 }
 
