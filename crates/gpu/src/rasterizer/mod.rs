@@ -252,15 +252,72 @@ pub(crate) fn fill_span(
     c: u16,
     line: &[u16],
 ) {
-    let len = (x_end - x_start) as usize;
     if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-        if x_end - x_start >= COPY_SPAN
-            && let Some(src) = line.get(..len)
-        {
-            s.copy_from_slice(src);
-        } else {
-            s.fill(c);
+        fill_row(s, c, line);
+    }
+}
+
+/// Write `c` to every entry of `s`, copying from `line` (empty, or `c` in every entry) when
+/// `s` is long enough to pay.
+#[inline(always)]
+pub(crate) fn fill_row(s: &mut [u16], c: u16, line: &[u16]) {
+    if s.len() >= COPY_SPAN as usize
+        && let Some(src) = line.get(..s.len())
+    {
+        s.copy_from_slice(src);
+    } else {
+        fill_stores(s, c);
+    }
+}
+
+/// Write `c` to every entry of `s` with a few fixed-size stores that may overlap instead of
+/// one store per entry: two or four stores of eight entries (the first and last eight, or
+/// the first sixteen and the last sixteen) for 8 to 32 entries, eight at a time and a last
+/// eight ending at the end of `s` beyond that; the first and last four, or two, or the one
+/// entry below eight. No entry outside `s` is written.
+#[inline(always)]
+pub(crate) fn fill_stores(s: &mut [u16], c: u16) {
+    let n = s.len();
+    let c8 = wide::u16x8::splat(c).to_array();
+    let mut put8 = |at: usize| {
+        if let Some(d) = s.get_mut(at..).and_then(|d| d.first_chunk_mut::<8>()) {
+            *d = c8;
         }
+    };
+    if n >= 8 {
+        if n <= 16 {
+            put8(0);
+            put8(n - 8);
+        } else if n <= 32 {
+            put8(0);
+            put8(8);
+            put8(n - 16);
+            put8(n - 8);
+        } else {
+            for at in (0..n - 8).step_by(8) {
+                put8(at);
+            }
+            put8(n - 8);
+        }
+    } else if n >= 4 {
+        // Four or two entries as one 64- or 32-bit value: one store each.
+        let c4 = wide::bytemuck::cast::<u64, [u16; 4]>(u64::from(c) * 0x0001_0001_0001_0001);
+        if let Some(d) = s.first_chunk_mut::<4>() {
+            *d = c4;
+        }
+        if let Some(d) = s.last_chunk_mut::<4>() {
+            *d = c4;
+        }
+    } else if n >= 2 {
+        let c2 = wide::bytemuck::cast::<u32, [u16; 2]>(u32::from(c) * 0x0001_0001);
+        if let Some(d) = s.first_chunk_mut::<2>() {
+            *d = c2;
+        }
+        if let Some(d) = s.last_chunk_mut::<2>() {
+            *d = c2;
+        }
+    } else if let Some(p) = s.first_mut() {
+        *p = c;
     }
 }
 
