@@ -5,7 +5,8 @@
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
-    DrawCount, Rows, draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
+    DrawCount, Rows, draw_flat_triangle_rows, draw_line_rows, draw_rectangle_rows, draw_tiled_quad,
+    draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
@@ -523,6 +524,7 @@ impl Gpu {
                 }
                 self.irq = true;
             }
+            0x20 | 0x21 if !self.draw.mask.check => return self.flat_triangle(p),
             0x20..=0x3F => return self.polygon(p),
             0x40..=0x5F => return self.line(p),
             0x60..=0x7F => return self.rectangle(p),
@@ -594,6 +596,21 @@ impl Gpu {
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
         units
+    }
+
+    /// GP0(20h), a flat untextured opaque triangle (21h: the raw bit, which only textured
+    /// polygons read), without the E6h mask check: what [`Gpu::polygon`] does for it. The
+    /// draw mode is unchanged (no texpage attribute), no CLUT is loaded, nothing is read back
+    /// (docs/hardware/gpu.md §2, §3).
+    fn flat_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let [a, b, c] = [p[1], p[2], p[3]].map(|w| {
+            let v = Gpu::vertex(&self.draw, w, 0);
+            (v.x, v.y)
+        });
+        let rows = self.draw_rows();
+        let rgb = color::unpack888(p[0]);
+        let drawn = draw_flat_triangle_rows(&mut self.vram, &self.draw, [a, b, c], rgb, rows);
+        Cost::triangle(false, false, false, false, drawn)
     }
 
     fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {

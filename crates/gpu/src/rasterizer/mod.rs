@@ -636,6 +636,28 @@ pub(crate) fn draw_triangle_rows(
     }
 }
 
+/// Draw a flat, untextured, opaque triangle (GP0 20h) without mask check, corners `p`
+/// (offset applied), colour `rgb` (docs/hardware/gpu.md §3, §6): what [`draw_triangle_rows`]
+/// does for it, without the pixel environment of other primitives.
+pub(crate) fn draw_flat_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    p: [(i32, i32); 3],
+    rgb: [u8; 3],
+    rows: Rows,
+) -> DrawCount {
+    let color = flat_color(rgb.map(i32::from), if state.mask.set { 0x8000 } else { 0 });
+    let xs = p.map(|p| wrap11(p.0));
+    let width = xs[0].max(xs[1]).max(xs[2]) - xs[0].min(xs[1]).min(xs[2]);
+    let vram = vram.as_array_mut();
+    if width.min(state.area.right as i32 + 1 - state.area.left as i32) >= LINE_WIDTH {
+        let line = [color; crate::VRAM_WIDTH];
+        triangle::draw_flat(vram, state, p, color, &line, rows)
+    } else {
+        triangle::draw_flat(vram, state, p, color, &[], rows)
+    }
+}
+
 /// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
 /// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
 /// The triangle's own vertex positions are ignored in favour of `at`.
