@@ -5,8 +5,8 @@
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
-    DrawCount, Rows, draw_flat_triangle_rows, draw_line_rows, draw_rectangle_rows, draw_tiled_quad,
-    draw_triangle_rows,
+    DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_line_rows, draw_rectangle_rows,
+    draw_tiled_quad, draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
@@ -614,6 +614,23 @@ impl Gpu {
     }
 
     fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        // One flat opaque segment (no Gouraud, semi-transparency or polyline bit),
+        // undithered, without mask check, on every row: two positions and a colour, without
+        // the decoded line, when it lies inside the drawing area (docs/hardware/gpu.md §2, §4).
+        if p[0] & (1 << 28 | 1 << 27 | 1 << 25) == 0
+            && !self.draw.mode.dither
+            && !self.draw.mask.check
+            && self.draw_rows() == Rows::All
+        {
+            let v = [p[1], p[2]].map(|w| {
+                let v = Gpu::vertex(&self.draw, w, 0);
+                (v.x, v.y)
+            });
+            let rgb = color::unpack888(p[0]);
+            if let Some(drawn) = draw_flat_line(&mut self.vram, &self.draw, v, rgb) {
+                return Cost::line(drawn);
+            }
+        }
         let line = line_packet(p, &self.draw);
         let rows = self.draw_rows();
         let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);

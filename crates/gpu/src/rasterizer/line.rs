@@ -2,8 +2,7 @@
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
 use super::{
-    DrawCount, PixelEnv, TEX_NONE, exceeds_size_limit, flat_color, shade_pixel,
-    step_away_from_zero, wrap11,
+    DrawCount, PixelEnv, TEX_NONE, exceeds_size_limit, shade_pixel, step_away_from_zero, wrap11,
 };
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::{Line, Vertex};
@@ -44,18 +43,18 @@ struct Walk {
 }
 
 impl Walk {
-    /// The walk from `p0` to `p1`, `p0` the left endpoint.
+    /// The walk from `p0` to `p1` (wrapped positions), `p0` the left endpoint.
     #[inline(always)]
-    fn new(p0: &Vertex, p1: &Vertex) -> Walk {
-        let (dx, dy) = (p1.x - p0.x, p1.y - p0.y);
+    fn new(p0: (i32, i32), p1: (i32, i32)) -> Walk {
+        let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
         let k = dx.abs().max(dy.abs());
         let (x_step, y_step) = if k == 0 {
             (0, 0)
         } else {
             (step_away_from_zero(dx, k), step_away_from_zero(dy, k))
         };
-        let x = (((p0.x as i64) << 32) | (1 << 31)) - 1024;
-        let mut y = ((p0.y as i64) << 32) | (1 << 31);
+        let x = (((p0.0 as i64) << 32) | (1 << 31)) - 1024;
+        let mut y = ((p0.1 as i64) << 32) | (1 << 31);
         if dy < 0 {
             y -= 1024;
         }
@@ -77,36 +76,35 @@ impl Walk {
     }
 }
 
-/// Whether every point of the segment is inside `area`: each lies in the box of the two
-/// endpoints (over the whole segment the steps fall short of the endpoint by less than
-/// 2^-21 of a pixel, too little to change a pixel).
+/// A flat, opaque, undithered line without the mask test, on every row, from `p0` to `p1`
+/// (offset applied, not yet wrapped), pixel value `value`: every point is one store when all
+/// lie inside the drawing area, which they do when both endpoints do (each point lies in the
+/// box of the two endpoints: over the whole segment the steps fall short of the endpoint by
+/// less than 2^-21 of a pixel, too little to change a pixel). `None` when an endpoint lies
+/// outside (the general [`draw`] then tests each point); a line the size limit drops
+/// (docs/hardware/gpu.md §4) draws and steps nothing.
 #[inline(always)]
-fn inside(p0: &Vertex, p1: &Vertex, area: &DrawingArea) -> bool {
-    p0.x >= area.left as i32
-        && p1.x <= area.right as i32
-        && p0.y.min(p1.y) >= area.top as i32
-        && p0.y.max(p1.y) <= area.bottom as i32
-}
-
-/// A flat, opaque, undithered line without the mask test, on every row, whose points all lie
-/// inside the drawing area: every point is one store of the same value. `None` when the line
-/// leaves the area (the general [`draw`] then tests each point).
 pub(super) fn draw_flat_inside(
     vram: &mut [u16; VRAM_LEN],
-    state: &DrawState,
-    line: &Line,
+    area: &DrawingArea,
+    [p0, p1]: [(i32, i32); 2],
+    value: u16,
 ) -> Option<DrawCount> {
-    let Some([p0, p1]) = endpoints(line) else {
+    let (mut p0, mut p1) = ((wrap11(p0.0), wrap11(p0.1)), (wrap11(p1.0), wrap11(p1.1)));
+    if exceeds_size_limit(p0, p1) {
         return Some(DrawCount::default());
-    };
-    if !inside(&p0, &p1, &state.area) {
+    }
+    if p0.0 > p1.0 {
+        core::mem::swap(&mut p0, &mut p1);
+    }
+    if p0.0 < area.left as i32
+        || p1.0 > area.right as i32
+        || p0.1.min(p1.1) < area.top as i32
+        || p0.1.max(p1.1) > area.bottom as i32
+    {
         return None;
     }
-    let value = flat_color(
-        p0.color.map(i32::from),
-        if state.mask.set { 0x8000 } else { 0 },
-    );
-    let walk = Walk::new(&p0, &p1);
+    let walk = Walk::new(p0, p1);
     let (mut x, mut y) = (walk.x, walk.y);
     for _ in 0..walk.k + 1 {
         let (px, py) = ((x >> 32) as usize, (y >> 32) as usize);
@@ -136,7 +134,7 @@ pub(super) fn draw<
     let Some([p0, p1]) = endpoints(line) else {
         return DrawCount::default();
     };
-    let walk = Walk::new(&p0, &p1);
+    let walk = Walk::new((p0.x, p0.y), (p1.x, p1.y));
     let (mut x, mut y, k) = (walk.x, walk.y, walk.k);
     let mut color = [0i32; 3];
     let mut color_step = [0i32; 3];

@@ -767,14 +767,15 @@ pub(crate) fn draw_line_rows(
 ) -> DrawCount {
     let vram = vram.as_array_mut();
     let filtered = rows != Rows::All;
-    if !line.gouraud
-        && line.blend.is_none()
-        && !line.dither
-        && !state.mask.check
-        && !filtered
-        && let Some(drawn) = line::draw_flat_inside(vram, state, line)
-    {
-        return drawn;
+    if !line.gouraud && line.blend.is_none() && !line.dither && !state.mask.check && !filtered {
+        let p = line.vertices.map(|v| (v.x, v.y));
+        let value = flat_color(
+            line.vertices[0].color.map(i32::from),
+            if state.mask.set { 0x8000 } else { 0 },
+        );
+        if let Some(drawn) = line::draw_flat_inside(vram, &state.area, p, value) {
+            return drawn;
+        }
     }
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
@@ -791,6 +792,20 @@ pub(crate) fn draw_line_rows(
     );
     use line::draw;
     dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
+}
+
+/// Draw a flat, opaque line segment (GP0 40h) from `p[0]` to `p[1]` (offset applied) in
+/// colour `rgb`, undithered, without mask check, on every row, when both endpoints lie
+/// inside the drawing area: what [`draw_line_rows`] does for it. `None` (nothing drawn)
+/// otherwise.
+pub(crate) fn draw_flat_line(
+    vram: &mut Vram,
+    state: &DrawState,
+    p: [(i32, i32); 2],
+    rgb: [u8; 3],
+) -> Option<DrawCount> {
+    let value = flat_color(rgb.map(i32::from), if state.mask.set { 0x8000 } else { 0 });
+    line::draw_flat_inside(vram.as_array_mut(), &state.area, p, value)
 }
 
 /// Draw one rectangle (docs/hardware/gpu.md §5), writing only the lines `rows` keeps. Returns
