@@ -477,14 +477,30 @@ impl Gpu {
             return 0;
         };
         let n = packet_len(head);
-        let (Some(packet), Some(buf)) = (words.get(..n), self.gp0.buf.get_mut(..n)) else {
+        if words.len() < n {
             return 0;
+        }
+        // The buffer as `gp0` leaves it: the packet's words, then what it held before. The
+        // packet executes from `words` itself while a whole buffer's length of them is
+        // there (a command reads only its own words).
+        let units = if let Some(block) = words.first_chunk::<MAX_PACKET>() {
+            if let (Some(buf), Some(packet)) = (self.gp0.buf.get_mut(..n), block.get(..n)) {
+                buf.copy_from_slice(packet);
+            }
+            self.execute(block)
+        } else {
+            let mut packet = self.gp0.buf;
+            for (b, &w) in packet.iter_mut().zip(words).take(n) {
+                *b = w;
+            }
+            self.gp0.buf = packet;
+            self.execute(&packet)
         };
-        buf.copy_from_slice(packet);
-        self.drawing.receive_words(takes_fifo_space(head), n as u32);
-        let packet = self.gp0.buf;
-        let units = self.execute(&packet);
-        self.drawing.complete(units_to_gpu(units as u64));
+        // Executing a packet leaves the drawing side as it was: the words are received and
+        // complete a unit together.
+        let cycles = units_to_gpu(units as u64);
+        self.drawing
+            .receive_unit(takes_fifo_space(head), n as u32, cycles);
         n
     }
 
