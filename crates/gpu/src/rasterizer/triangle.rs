@@ -437,7 +437,7 @@ pub(super) fn draw<
             if x_start < x_end {
                 drawn.span(x_start, x_end, BLEND || MASK_CHECK);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
-                if groups && x_end - x_start >= span::MIN_PIXELS {
+                if groups && (TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS) {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
                     let acc = core::array::from_fn(|i| {
