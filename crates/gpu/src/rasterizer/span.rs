@@ -56,6 +56,12 @@ impl LaneSteps {
             group: step.map(|s| u32x8::splat(s.wrapping_mul(LANES as u32))),
         }
     }
+
+    /// The per-pixel steps.
+    #[inline(always)]
+    pub(super) fn step(&self) -> [u32; 5] {
+        self.step
+    }
 }
 
 /// The 8-bit integer parts of eight 8.24 attribute lanes.
@@ -74,9 +80,10 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// `acc` holds the five 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the
 /// colour when not `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep
 /// their bit 15 (docs/hardware/gpu.md §6, §7). Every pixel's value depends only on its own
-/// position, attributes and texel, so a span of eight or more pixels ends with a whole group
-/// ending at `x_end` that overlaps the one before it, and a shorter span stores its first
-/// and last four, two or one pixels.
+/// position, attributes and texel, so an untextured span of eight or more pixels ends with
+/// a whole group ending at `x_end` that overlaps the one before it, and a shorter one stores
+/// its first and last four, two or one pixels; a textured span stores the pixels of its last
+/// group one by one.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
@@ -128,6 +135,22 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
             *l += *s;
         }
         x += LANES as i32;
+    }
+    if textured {
+        // The last 1 to 8 pixels. A textured group reads the pixels it keeps, which a group
+        // overlapping the one just written would read back from it: these go one by one.
+        let n = (x_end - x) as usize;
+        let (out, _, texel) = group(vram, x, &lanes, n);
+        let start = row + x as usize;
+        if let Some(dst) = vram.get_mut(start..start + n) {
+            let out = out.to_array();
+            for (k, d) in dst.iter_mut().enumerate() {
+                if texel[k] != 0 {
+                    *d = out[k];
+                }
+            }
+        }
+        return;
     }
     // The last group ends at `x_end`: `back` pixels before `x`, re-drawing them alike.
     let back = (LANES as i32 - (x_end - x)) as u32;

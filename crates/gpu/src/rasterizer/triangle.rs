@@ -329,6 +329,105 @@ impl FlatRows {
     }
 }
 
+/// The rows of one part of a triangle drawn in eight-pixel groups (see [`span::draw`]): from
+/// row `y` to `last` (exclusive) every `stride` rows, the span `[l >> 32, r >> 32)` at each
+/// clipped to the columns `clip`, the edges stepping by `dl` and `dr`; `attr` holds the
+/// attributes at column 0 of row `y` and steps by `attr_step` per row walked
+/// (docs/hardware/gpu.md §3.4-§3.6).
+struct GroupRows {
+    y: i32,
+    last: i32,
+    stride: i32,
+    l: i64,
+    r: i64,
+    dl: i64,
+    dr: i64,
+    clip: (i32, i32),
+    attr: [u32; 5],
+    attr_step: [u32; 5],
+}
+
+impl GroupRows {
+    /// Draw the spans; returns the pixels drawn. Textured spans under
+    /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+    #[inline(never)]
+    fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        lanes: &span::LaneSteps,
+        flat: [i32; 3],
+        env: &PixelEnv,
+    ) -> u32 {
+        let Self {
+            mut y,
+            last,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            mut attr,
+            attr_step,
+        } = self;
+        let step = lanes.step();
+        let mut pixels = 0;
+        while y < last {
+            let x_start = ((l >> 32) as i32).max(clip.0);
+            let x_end = ((r >> 32) as i32).min(clip.1);
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                pixels += (x_end - x_start) as u32;
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                let mut acc: [u32; 5] = core::array::from_fn(|i| {
+                    attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
+                });
+                if TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS {
+                    span::draw::<TEX, GOURAUD, DITHER>(
+                        vram, row, y, x_start, x_end, acc, lanes, flat, env,
+                    );
+                } else {
+                    let dither_row = &DITHER_TABLES[(y & 3) as usize];
+                    for x in x_start..x_end {
+                        let rgb = if GOURAUD {
+                            [
+                                (acc[0] >> 24) as i32,
+                                (acc[1] >> 24) as i32,
+                                (acc[2] >> 24) as i32,
+                            ]
+                        } else {
+                            flat
+                        };
+                        shade_pixel::<TEX, false, false, false>(
+                            vram,
+                            row + x as usize,
+                            rgb,
+                            (acc[3] >> 24) as u8,
+                            (acc[4] >> 24) as u8,
+                            if DITHER {
+                                &dither_row[(x & 3) as usize]
+                            } else {
+                                &PLAIN_TABLE
+                            },
+                            env,
+                            false,
+                        );
+                        for (a, s) in acc.iter_mut().zip(step) {
+                            *a = a.wrapping_add(s);
+                        }
+                    }
+                }
+            }
+            for (a, s) in attr.iter_mut().zip(attr_step) {
+                *a = a.wrapping_add(s);
+            }
+            y += stride;
+        }
+        pixels
+    }
+}
+
 /// Draw with the pixel pipeline fixed by the const parameters.
 pub(super) fn draw<
     const TEX: u8,
@@ -428,6 +527,29 @@ pub(super) fn draw<
         }
         let (mut l, mut r) = (left.at(first), right.at(first));
         let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
+        if groups {
+            // Attribute `i` at column 0 of row `first`, 8.24 with 32-bit wrap (§3.6).
+            let dy = first.wrapping_sub(cv.y) as u32;
+            let dx = cv.x.wrapping_neg() as u32;
+            let walk = GroupRows {
+                y: first,
+                last,
+                stride,
+                l,
+                r,
+                dl,
+                dr,
+                clip: (clip_left, clip_right),
+                attr: core::array::from_fn(|i| {
+                    origin[i]
+                        .wrapping_add(grads[i].0.wrapping_mul(dx))
+                        .wrapping_add(grads[i].1.wrapping_mul(dy))
+                }),
+                attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
+            };
+            drawn.pixels += walk.draw::<TEX, GOURAUD, DITHER>(vram, &lanes, flat, &env);
+            continue;
+        }
         let mut y = first;
         while y < last {
             let x_start = ((l >> 32) as i32).max(clip_left);
@@ -437,18 +559,7 @@ pub(super) fn draw<
             if x_start < x_end {
                 drawn.span(x_start, x_end, BLEND || MASK_CHECK);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
-                if groups && (TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS) {
-                    let dx = x_start.wrapping_sub(cv.x) as u32;
-                    let dy = y.wrapping_sub(cv.y) as u32;
-                    let acc = core::array::from_fn(|i| {
-                        origin[i]
-                            .wrapping_add(grads[i].0.wrapping_mul(dx))
-                            .wrapping_add(grads[i].1.wrapping_mul(dy))
-                    });
-                    span::draw::<TEX, GOURAUD, DITHER>(
-                        vram, row, y, x_start, x_end, acc, &lanes, flat, &env,
-                    );
-                } else {
+                {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
                     let mut acc = [0u32; 5];
