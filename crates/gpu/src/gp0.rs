@@ -5,8 +5,8 @@
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
-    DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_line_rows, draw_rectangle_rows,
-    draw_tiled_quad, draw_triangle_rows,
+    DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
+    draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
@@ -541,6 +541,7 @@ impl Gpu {
                 self.irq = true;
             }
             0x20 | 0x21 if !self.draw.mask.check => return self.flat_triangle(p),
+            0x30 | 0x31 if !self.draw.mask.check => return self.gouraud_triangle(p),
             0x20..=0x3F => return self.polygon(p),
             0x40..=0x5F => return self.line(p),
             0x60..=0x7F => return self.rectangle(p),
@@ -627,6 +628,27 @@ impl Gpu {
         let rgb = color::unpack888(p[0]);
         let drawn = draw_flat_triangle_rows(&mut self.vram, &self.draw, [a, b, c], rgb, rows);
         Cost::triangle(false, false, false, false, drawn)
+    }
+
+    /// GP0(30h), a Gouraud-shaded untextured opaque triangle (31h: the raw bit, which only
+    /// textured polygons read), without the E6h mask check: what [`Gpu::polygon`] does for
+    /// it. Dithered under E1h bit 9; the draw mode is unchanged (no texpage attribute), no
+    /// CLUT is loaded, nothing is read back (docs/hardware/gpu.md §2, §3, §6).
+    fn gouraud_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let tri = Triangle {
+            vertices: [
+                Gpu::vertex(&self.draw, p[1], p[0]),
+                Gpu::vertex(&self.draw, p[3], p[2]),
+                Gpu::vertex(&self.draw, p[5], p[4]),
+            ],
+            gouraud: true,
+            texture: None,
+            blend: None,
+            dither: self.draw.mode.dither,
+        };
+        let rows = self.draw_rows();
+        let drawn = draw_gouraud_triangle_rows(&mut self.vram, &self.draw, &tri, rows);
+        Cost::triangle(false, true, false, false, drawn)
     }
 
     fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {

@@ -313,6 +313,66 @@ proptest! {
         prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
     }
 
+    /// Gouraud-shaded opaque triangles without the E6h mask check (GP0 30h, and 31h whose
+    /// raw bit an untextured polygon ignores), dithered under E1h bit 9, on a cleared VRAM
+    /// with the mask bit set: the pixels and §3.6 colours of the model, only on the lines
+    /// 480i drawing keeps (§8), and a drawing time of the set-up, the Gouraud set-up and
+    /// two units per pixel drawn (docs/emulator.md, "Drawing time").
+    #[test]
+    fn gouraud_triangles_draw_and_count_the_model_pixels(
+        pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 3]>()), 3),
+        snap in prop::collection::vec(prop::option::of((0usize..4, -2i32..3)), 3),
+        raw in any::<bool>(),
+        interlace in prop::option::of(0u32..2),
+        env in env(),
+    ) {
+        let env = Env { mask: Mask { set: true, check: false }, ..env };
+        let a = env.area;
+        let pts: Vec<(i32, i32, [u8; 3])> = pts.iter().zip(&snap).map(|(&(x, y, c), s)| match *s {
+            Some((side, d)) => {
+                let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
+                if side < 2 { (edge - env.offset.0, y, c) } else { (x, edge - env.offset.1, c) }
+            }
+            None => (x, y, c),
+        }).collect();
+        let mut g = Gpu::new();
+        g.gp1(0x0600_0000);
+        g.gp1(0x07FF_FFFF);
+        if let Some(start) = interlace {
+            g.gp1(0x0800_0025);
+            g.gp1(0x0500_0000 | start << 10);
+        }
+        g.gp0(0xE100_0000 | (env.dither as u32) << 9);
+        g.gp0_words(&env.words());
+        let mut words = vec![];
+        for (i, p) in pts.iter().enumerate() {
+            let cmd = if i == 0 { (0x30 | raw as u32) << 24 } else { 0 };
+            words.push(cmd | rgb_word(p.2));
+            words.push(xy(p.0, p.1));
+        }
+        g.gp0_words(&words);
+
+        let mut expected = Vram::new();
+        let v = [0, 1, 2].map(|i| {
+            let c = rgb8(pts[i].2).map(|c| c as i64);
+            env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0])
+        });
+        let mut drawn = 0u32;
+        for p in model::triangle(v, env.clip()) {
+            if interlace.is_some_and(|start| p.y.rem_euclid(2) == start as i64) {
+                continue;
+            }
+            let c = [0, 1, 2].map(|i| model::channel(p.attr[i], p.x, p.y, env.dither));
+            let color = c[0] | c[1] << 5 | c[2] << 10;
+            pixel::plot(&mut expected, (p.x, p.y), color, false, None, env.mask);
+            drawn += 1;
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
+        let units = 82.0 + 288.0 + 2.0 * drawn as f64;
+        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
+    }
+
     /// Flat quads whose vertices are the corners of an axis-aligned rectangle, in every
     /// order (some orders tile the rectangle with the two triangles, others cross; some
     /// rectangles exceed the size limit): the same model as above, two triangles each.

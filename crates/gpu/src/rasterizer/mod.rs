@@ -658,6 +658,30 @@ pub(crate) fn draw_flat_triangle_rows(
     }
 }
 
+/// Draw a Gouraud-shaded, untextured, opaque triangle (GP0 30h) without mask check,
+/// dithered when `tri.dither` (docs/hardware/gpu.md §3, §6): what [`draw_triangle_rows`]
+/// does for it, without the CLUT cache and texture state of textured polygons.
+pub(crate) fn draw_gouraud_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    tri: &Triangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
+    let env = PixelEnv {
+        mask_or: if state.mask.set { 0x8000 } else { 0 },
+        blend: BlendMode::default(),
+        sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
+        lut: [0; 16],
+        line: &[],
+    };
+    if tri.dither {
+        triangle::draw::<TEX_NONE, true, false, false, true, false>(vram, state, &env, tri, rows)
+    } else {
+        triangle::draw::<TEX_NONE, true, false, false, false, false>(vram, state, &env, tri, rows)
+    }
+}
+
 /// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
 /// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
 /// The triangle's own vertex positions are ignored in favour of `at`.
