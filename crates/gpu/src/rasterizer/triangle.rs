@@ -192,6 +192,7 @@ impl Divisor {
 }
 
 /// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), i32 maths with truncating division.
+#[inline(always)]
 fn gradient(v: &[Vtx; 3], i: usize, den: Divisor) -> (u32, u32) {
     let (a, b, c) = (&v[0], &v[1], &v[2]);
     let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
@@ -507,6 +508,7 @@ pub(super) fn draw<
                 (a.y.max(clip_top), c.y.min(clip_bottom)),
             )
         });
+
     let lanes = span::LaneSteps::new(step);
 
     let stride = match rows {
