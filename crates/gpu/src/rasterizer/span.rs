@@ -80,10 +80,8 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// `acc` holds the five 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the
 /// colour when not `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep
 /// their bit 15 (docs/hardware/gpu.md §6, §7). Every pixel's value depends only on its own
-/// position, attributes and texel, so an untextured span of eight or more pixels ends with
-/// a whole group ending at `x_end` that overlaps the one before it, and a shorter one stores
-/// its first and last four, two or one pixels; a textured span stores the pixels of its last
-/// group one by one.
+/// position, attributes and texel; the last group of a span stores only the pixels left: an
+/// untextured one its first and last four, two or one, a textured one pixel by pixel.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
@@ -107,26 +105,6 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
     let put = put::<TEX>;
     // Attribute `i` of pixel `x + k` in lane `k`.
     let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
-    let width = x_end - x_start;
-    if width < LANES as i32 {
-        let n = width as usize;
-        let (out, t, texel) = group(vram, x_start, &lanes, n);
-        let start = row + x_start as usize;
-        if let Some(dst) = vram.get_mut(start..start + n) {
-            let out = out.to_array();
-            if textured {
-                for (k, d) in dst.iter_mut().enumerate() {
-                    if texel[k] != 0 {
-                        *d = out[k];
-                    }
-                }
-            } else {
-                let _ = t;
-                copy_ends(dst, &out);
-            }
-        }
-        return;
-    }
     let mut x = x_start;
     while x_end - x > LANES as i32 {
         let (out, t, _) = group(vram, x, &lanes, LANES);
@@ -136,30 +114,24 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
         }
         x += LANES as i32;
     }
-    if textured {
-        // The last 1 to 8 pixels. A textured group reads the pixels it keeps, which a group
-        // overlapping the one just written would read back from it: these go one by one.
-        let n = (x_end - x) as usize;
-        let (out, _, texel) = group(vram, x, &lanes, n);
-        let start = row + x as usize;
-        if let Some(dst) = vram.get_mut(start..start + n) {
-            let out = out.to_array();
+    // The last 1 to 8 pixels.
+    let n = (x_end - x) as usize;
+    let (out, t, texel) = group(vram, x, &lanes, n);
+    let start = row + x as usize;
+    if n == LANES {
+        put(vram, start, out, t);
+    } else if let Some(dst) = vram.get_mut(start..start + n) {
+        let out = out.to_array();
+        if textured {
             for (k, d) in dst.iter_mut().enumerate() {
                 if texel[k] != 0 {
                     *d = out[k];
                 }
             }
+        } else {
+            copy_ends(dst, &out);
         }
-        return;
     }
-    // The last group ends at `x_end`: `back` pixels before `x`, re-drawing them alike.
-    let back = (LANES as i32 - (x_end - x)) as u32;
-    for (l, s) in lanes.iter_mut().zip(steps.step) {
-        *l -= u32x8::splat(s.wrapping_mul(back));
-    }
-    let x = x_end - LANES as i32;
-    let (out, t, _) = group(vram, x, &lanes, LANES);
-    put(vram, row + x as usize, out, t);
 }
 
 /// One group of eight pixels of a span.
