@@ -99,15 +99,21 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
     let mask_or = i16x8::splat(env.mask_or as i16);
     let flat = flat.map(|c| i16x8::splat(c as i16));
     let dither_row = &DITHER_LANES[(y & 3) as usize];
-    let group = |vram: &[u16; VRAM_LEN], x: i32, lanes: &[u32x8; 5], n: usize| {
-        Group::<TEX, GOURAUD, DITHER>::shade(vram, env, flat, mask_or, dither_row, x, lanes, n)
+    // A span's groups start a multiple of eight pixels apart: the same dither offsets.
+    let dither = if DITHER {
+        i16x8::new(dither_row[(x_start & 3) as usize])
+    } else {
+        i16x8::ZERO
+    };
+    let group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
+        Group::<TEX, GOURAUD>::shade(vram, env, flat, mask_or, dither, lanes, n)
     };
     let put = put::<TEX>;
     // Attribute `i` of pixel `x + k` in lane `k`.
     let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
     let mut x = x_start;
     while x_end - x > LANES as i32 {
-        let (out, t, _) = group(vram, x, &lanes, LANES);
+        let (out, t, _) = group(vram, &lanes, LANES);
         put(vram, row + x as usize, out, t);
         for (l, s) in lanes.iter_mut().zip(&steps.group) {
             *l += *s;
@@ -116,7 +122,7 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
     }
     // The last 1 to 8 pixels.
     let n = (x_end - x) as usize;
-    let (out, t, texel) = group(vram, x, &lanes, n);
+    let (out, t, texel) = group(vram, &lanes, n);
     let start = row + x as usize;
     if n == LANES {
         put(vram, start, out, t);
@@ -135,11 +141,11 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
 }
 
 /// One group of eight pixels of a span.
-struct Group<const TEX: u8, const GOURAUD: bool, const DITHER: bool>;
+struct Group<const TEX: u8, const GOURAUD: bool>;
 
-impl<const TEX: u8, const GOURAUD: bool, const DITHER: bool> Group<TEX, GOURAUD, DITHER> {
-    /// The eight pixels from `x`, with attribute `i` of pixel `x + k` in lane `k`: their
-    /// values and their texels (0 past the first `n`, which are not fetched).
+impl<const TEX: u8, const GOURAUD: bool> Group<TEX, GOURAUD> {
+    /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
+    /// their values and their texels (0 past the first `n`, which are not fetched).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn shade(
@@ -147,8 +153,7 @@ impl<const TEX: u8, const GOURAUD: bool, const DITHER: bool> Group<TEX, GOURAUD,
         env: &PixelEnv,
         flat: [i16x8; 3],
         mask_or: i16x8,
-        dither_row: &[[i16; LANES]; 4],
-        x: i32,
+        dither: i16x8,
         lanes: &[u32x8; 5],
         n: usize,
     ) -> (u16x8, i16x8, [u16; LANES]) {
@@ -165,11 +170,6 @@ impl<const TEX: u8, const GOURAUD: bool, const DITHER: bool> Group<TEX, GOURAUD,
                 *t = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
             }
         }
-        let dither = if DITHER {
-            i16x8::new(dither_row[(x & 3) as usize])
-        } else {
-            i16x8::ZERO
-        };
         let t = i16x8::new(texel.map(|t| t as i16));
         let (cr, cg, cb) = if textured {
             // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
