@@ -352,7 +352,7 @@ impl GroupRows {
     /// Draw the spans; returns the pixels drawn. Textured spans under
     /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
-    fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
+    fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const CLIP: bool>(
         self,
         vram: &mut [u16; VRAM_LEN],
         lanes: &span::LaneSteps,
@@ -374,8 +374,11 @@ impl GroupRows {
         let step = lanes.step();
         let mut pixels = 0;
         while y < last {
-            let x_start = ((l >> 32) as i32).max(clip.0);
-            let x_end = ((r >> 32) as i32).min(clip.1);
+            let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
+            if CLIP {
+                x_start = x_start.max(clip.0);
+                x_end = x_end.min(clip.1);
+            }
             l = l.wrapping_add(dl);
             r = r.wrapping_add(dr);
             if x_start < x_end {
@@ -549,7 +552,14 @@ pub(super) fn draw<
                 }),
                 attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
             };
-            drawn.pixels += walk.draw::<TEX, GOURAUD, DITHER>(vram, &lanes, flat, &env);
+            // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
+            // inside the area's columns need no clip.
+            let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
+            drawn.pixels += if inside {
+                walk.draw::<TEX, GOURAUD, DITHER, false>(vram, &lanes, flat, &env)
+            } else {
+                walk.draw::<TEX, GOURAUD, DITHER, true>(vram, &lanes, flat, &env)
+            };
             continue;
         }
         let mut y = first;
