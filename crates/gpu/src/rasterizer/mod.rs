@@ -661,6 +661,7 @@ pub(crate) fn draw_flat_triangle_rows(
 /// Draw a Gouraud-shaded, untextured, opaque triangle (GP0 30h) without mask check,
 /// dithered when `tri.dither` (docs/hardware/gpu.md §3, §6): what [`draw_triangle_rows`]
 /// does for it, without the CLUT cache and texture state of textured polygons.
+#[inline(always)]
 pub(crate) fn draw_gouraud_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
@@ -676,9 +677,13 @@ pub(crate) fn draw_gouraud_triangle_rows(
         line: &[],
     };
     if tri.dither {
-        triangle::draw::<TEX_NONE, true, false, false, true, false>(vram, state, &env, tri, rows)
+        triangle::draw_inline::<TEX_NONE, true, false, false, true, false>(
+            vram, state, &env, tri, rows,
+        )
     } else {
-        triangle::draw::<TEX_NONE, true, false, false, false, false>(vram, state, &env, tri, rows)
+        triangle::draw_inline::<TEX_NONE, true, false, false, false, false>(
+            vram, state, &env, tri, rows,
+        )
     }
 }
 

@@ -41,7 +41,6 @@ const fn dither_lanes() -> [[[i16; LANES]; 4]; 4] {
 /// `k * step[i]`, and a group advances every lane by `8 * step[i]`.
 #[derive(Clone, Copy)]
 pub(super) struct LaneSteps {
-    step: [u32; 5],
     offset: [u32x8; 5],
     group: [u32x8; 5],
 }
@@ -51,16 +50,9 @@ impl LaneSteps {
     #[inline(always)]
     pub(super) fn new(step: [u32; 5]) -> Self {
         Self {
-            step,
             offset: step.map(|s| u32x8::new(core::array::from_fn(|k| s.wrapping_mul(k as u32)))),
             group: step.map(|s| u32x8::splat(s.wrapping_mul(LANES as u32))),
         }
-    }
-
-    /// The per-pixel steps.
-    #[inline(always)]
-    pub(super) fn step(&self) -> [u32; 5] {
-        self.step
     }
 }
 

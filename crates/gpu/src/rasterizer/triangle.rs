@@ -349,13 +349,13 @@ struct GroupRows {
 }
 
 impl GroupRows {
-    /// Draw the spans; returns the pixels drawn. Textured spans under
-    /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+    /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
+    /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
     fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const CLIP: bool>(
         self,
         vram: &mut [u16; VRAM_LEN],
-        lanes: &span::LaneSteps,
+        step: [u32; 5],
         flat: [i32; 3],
         env: &PixelEnv,
     ) -> u32 {
@@ -371,7 +371,7 @@ impl GroupRows {
             mut attr,
             attr_step,
         } = self;
-        let step = lanes.step();
+        let lanes = &span::LaneSteps::new(step);
         let mut pixels = 0;
         while y < last {
             let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
@@ -434,6 +434,26 @@ impl GroupRows {
 
 /// Draw with the pixel pipeline fixed by the const parameters.
 pub(super) fn draw<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    state: &DrawState,
+    env: &PixelEnv,
+    tri: &Triangle,
+    rows: super::Rows,
+) -> DrawCount {
+    draw_inline::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(vram, state, env, tri, rows)
+}
+
+/// [`draw`], inlined into a caller that builds the triangle itself, so that its vertices
+/// need not pass through memory.
+#[inline(always)]
+pub(super) fn draw_inline<
     const TEX: u8,
     const GOURAUD: bool,
     const RAW: bool,
@@ -512,8 +532,6 @@ pub(super) fn draw<
             )
         });
 
-    let lanes = span::LaneSteps::new(step);
-
     let stride = match rows {
         super::Rows::All => 1,
         super::Rows::SkipParity(_) => 2,
@@ -556,9 +574,9 @@ pub(super) fn draw<
             // inside the area's columns need no clip.
             let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
             drawn.pixels += if inside {
-                walk.draw::<TEX, GOURAUD, DITHER, false>(vram, &lanes, flat, &env)
+                walk.draw::<TEX, GOURAUD, DITHER, false>(vram, step, flat, &env)
             } else {
-                walk.draw::<TEX, GOURAUD, DITHER, true>(vram, &lanes, flat, &env)
+                walk.draw::<TEX, GOURAUD, DITHER, true>(vram, step, flat, &env)
             };
             continue;
         }
