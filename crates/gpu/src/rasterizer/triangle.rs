@@ -64,10 +64,11 @@ struct Setup {
 }
 
 /// Core vertex, Y sort and edges (docs/hardware/gpu.md §3.3-§3.4) of the vertices `v`, whose
-/// wrapped positions `at` gives; returns them in sorted order with the set-up. `None` when
-/// the triangle has no rows (y0 == y2) or its vertices are collinear.
+/// wrapped positions `at` gives, for a triangle [`triangle_coverage`] draws (not collinear, so
+/// y0 < y2 and the gradient denominator is not 0); returns them in sorted order with the
+/// set-up.
 #[inline(always)]
-fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> Option<([T; 3], Setup)> {
+fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> ([T; 3], Setup) {
     // Core vertex from X before sorting (docs/hardware/gpu.md §3.3).
     let p = v.each_ref().map(&at);
     let mut core = if p[1].0 <= p[0].0 {
@@ -88,13 +89,6 @@ fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> Option<([T; 3
         }
     }
     let [a, b, c] = v.each_ref().map(&at);
-    if a.1 == c.1 {
-        return None;
-    }
-    let den = (b.0 - a.0) as i64 * (c.1 - b.1) as i64 - (c.0 - b.0) as i64 * (b.1 - a.1) as i64;
-    if den == 0 {
-        return None;
-    }
     let base_step = edge_step(c.0 - a.0, c.1 - a.1);
     let (upper_step, right_facing) = if b.1 == a.1 {
         (0, b.0 > a.0)
@@ -142,7 +136,7 @@ fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> Option<([T; 3
             right,
         }
     };
-    Some((
+    (
         v,
         Setup {
             core,
@@ -151,7 +145,7 @@ fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> Option<([T; 3
                 part(b.1, c.1, lower_anchor, lower_step),
             ],
         },
-    ))
+    )
 }
 
 /// Truncating division by a triangle's gradient denominator, one hardware divide per
@@ -219,9 +213,7 @@ pub(super) fn draw_flat(
     if let Coverage::Dropped(_) = triangle_coverage(p, &state.area) {
         return drawn;
     }
-    let Some((_, setup)) = setup(p, |&p| p) else {
-        return drawn;
-    };
+    let (_, setup) = setup(p, |&p| p);
     let area = state.area;
     let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
     let clip = (area.left as i32, area.right as i32 + 1);
@@ -489,9 +481,7 @@ pub(super) fn draw_inline<
     if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
         return drawn;
     }
-    let Some((v, setup)) = setup(verts, |v| (v.x, v.y)) else {
-        return drawn;
-    };
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
     let (a, b, c) = (v[0], v[1], v[2]);
     let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
     // Attribute set-up: 0-2 colour, 3-4 UV.
