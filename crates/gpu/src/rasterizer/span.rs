@@ -68,11 +68,11 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
     (c + d).max(i16x8::ZERO).min(i16x8::splat(255)) >> 3
 }
 
-/// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`), not empty, for an opaque primitive without mask check whose texture, if any, is modulated.
-/// `acc` holds the five 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the
-/// colour when not `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep
-/// their bit 15 (docs/hardware/gpu.md §6, §7). Every pixel's value depends only on its own
-/// position, attributes and texel; the last group of a span stores only the pixels left: an
+/// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`), not empty, for an opaque
+/// primitive without mask check whose texture, if any, is modulated. `acc` holds the five
+/// 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the colour when not
+/// `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep their bit 15
+/// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
 /// untextured one its first and last four, two or one, a textured one pixel by pixel.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
