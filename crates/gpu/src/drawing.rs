@@ -198,17 +198,24 @@ impl Drawing {
         }
     }
 
-    /// `n` GP0 words of one command arrived: `n` calls of [`Drawing::receive`].
-    pub fn receive_words(&mut self, takes_space: bool, n: u32) {
-        if takes_space && !self.idle() {
-            self.partial_words += n;
-            self.fifo_words += n;
-        }
+    /// `n` GP0 words of one command arrived and form a unit costing `cycles`: `n` calls of
+    /// [`Drawing::receive`], then [`Drawing::complete`].
+    pub fn receive_unit(&mut self, takes_space: bool, n: u32, cycles: u32) {
+        let queued = if takes_space && !self.idle() { n } else { 0 };
+        self.fifo_words += queued;
+        let words = core::mem::take(&mut self.partial_words) + queued;
+        self.complete_words(words, cycles);
     }
 
     /// The words received since the previous unit form a unit costing `cycles`.
     pub fn complete(&mut self, cycles: u32) {
         let words = core::mem::take(&mut self.partial_words);
+        self.complete_words(words, cycles);
+    }
+
+    /// `words` FIFO words form a unit costing `cycles`.
+    #[inline(always)]
+    fn complete_words(&mut self, words: u32, cycles: u32) {
         if self.idle() {
             self.fifo_words -= words.min(self.fifo_words);
             self.busy = cycles;

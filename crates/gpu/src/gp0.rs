@@ -5,7 +5,8 @@
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
-    DrawCount, Rows, draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
+    DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
+    draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
@@ -476,23 +477,30 @@ impl Gpu {
             return 0;
         };
         let n = packet_len(head);
-        let (Some(packet), Some(buf)) = (words.get(..n), self.gp0.buf.get_mut(..n)) else {
+        if words.len() < n {
             return 0;
-        };
-        buf.copy_from_slice(packet);
-        self.drawing.receive_words(takes_fifo_space(head), n as u32);
-        // The packet executes from the words given (the buffer keeps a copy, as word-by-word
-        // input leaves them there); a polygon reads them where they are.
-        let units = if matches!(head >> 24, 0x20..=0x3F) {
-            self.polygon(packet)
-        } else {
-            let mut words = [0u32; MAX_PACKET];
-            if let Some(head) = words.get_mut(..n) {
-                head.copy_from_slice(packet);
+        }
+        // The buffer as `gp0` leaves it: the packet's words, then what it held before. The
+        // packet executes from `words` itself while a whole buffer's length of them is
+        // there (a command reads only its own words).
+        let units = if let Some(block) = words.first_chunk::<MAX_PACKET>() {
+            if let (Some(buf), Some(packet)) = (self.gp0.buf.get_mut(..n), block.get(..n)) {
+                buf.copy_from_slice(packet);
             }
-            self.execute(&words)
+            self.execute(block)
+        } else {
+            let mut packet = self.gp0.buf;
+            for (b, &w) in packet.iter_mut().zip(words).take(n) {
+                *b = w;
+            }
+            self.gp0.buf = packet;
+            self.execute(&packet)
         };
-        self.drawing.complete(units_to_gpu(units as u64));
+        // Executing a packet leaves the drawing side as it was: the words are received and
+        // complete a unit together.
+        let cycles = units_to_gpu(units as u64);
+        self.drawing
+            .receive_unit(takes_fifo_space(head), n as u32, cycles);
         n
     }
 
@@ -532,6 +540,8 @@ impl Gpu {
                 }
                 self.irq = true;
             }
+            0x20 | 0x21 if !self.draw.mask.check => return self.flat_triangle(p),
+            0x30 | 0x31 if !self.draw.mask.check => return self.gouraud_triangle(p),
             0x20..=0x3F => return self.polygon(p),
             0x40..=0x5F => return self.line(p),
             0x60..=0x7F => return self.rectangle(p),
@@ -666,7 +676,60 @@ impl Gpu {
         units
     }
 
+    /// GP0(20h), a flat untextured opaque triangle (21h: the raw bit, which only textured
+    /// polygons read), without the E6h mask check: what [`Gpu::polygon`] does for it. The
+    /// draw mode is unchanged (no texpage attribute), no CLUT is loaded, nothing is read back
+    /// (docs/hardware/gpu.md §2, §3).
+    fn flat_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let [a, b, c] = [p[1], p[2], p[3]].map(|w| {
+            let v = Gpu::vertex(&self.draw, w, 0);
+            (v.x, v.y)
+        });
+        let rows = self.draw_rows();
+        let rgb = color::unpack888(p[0]);
+        let drawn = draw_flat_triangle_rows(&mut self.vram, &self.draw, [a, b, c], rgb, rows);
+        Cost::triangle(false, false, false, false, drawn)
+    }
+
+    /// GP0(30h), a Gouraud-shaded untextured opaque triangle (31h: the raw bit, which only
+    /// textured polygons read), without the E6h mask check: what [`Gpu::polygon`] does for
+    /// it. Dithered under E1h bit 9; the draw mode is unchanged (no texpage attribute), no
+    /// CLUT is loaded, nothing is read back (docs/hardware/gpu.md §2, §3, §6).
+    fn gouraud_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        let tri = Triangle {
+            vertices: [
+                Gpu::vertex(&self.draw, p[1], p[0]),
+                Gpu::vertex(&self.draw, p[3], p[2]),
+                Gpu::vertex(&self.draw, p[5], p[4]),
+            ],
+            gouraud: true,
+            texture: None,
+            blend: None,
+            dither: self.draw.mode.dither,
+        };
+        let rows = self.draw_rows();
+        let drawn = draw_gouraud_triangle_rows(&mut self.vram, &self.draw, &tri, rows);
+        Cost::triangle(false, true, false, false, drawn)
+    }
+
     fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        // One flat opaque segment (no Gouraud, semi-transparency or polyline bit),
+        // undithered, without mask check, on every row: two positions and a colour, without
+        // the decoded line, when it lies inside the drawing area (docs/hardware/gpu.md §2, §4).
+        if p[0] & (1 << 28 | 1 << 27 | 1 << 25) == 0
+            && !self.draw.mode.dither
+            && !self.draw.mask.check
+            && self.draw_rows() == Rows::All
+        {
+            let v = [p[1], p[2]].map(|w| {
+                let v = Gpu::vertex(&self.draw, w, 0);
+                (v.x, v.y)
+            });
+            let rgb = color::unpack888(p[0]);
+            if let Some(drawn) = draw_flat_line(&mut self.vram, &self.draw, v, rgb) {
+                return Cost::line(drawn);
+            }
+        }
         let line = line_packet(p, &self.draw);
         let rows = self.draw_rows();
         let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);

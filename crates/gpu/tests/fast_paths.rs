@@ -155,6 +155,17 @@ fn difference(got: &Vram, want: &Vram, background: &Vram) -> String {
     }
 }
 
+/// Draw units (half CPU cycles) to GPU cycles, rounded up: the NTSC GPU clock is 11/7 of
+/// the CPU clock (docs/hardware/timing.md §1), so a unit is 11/14 GPU cycle.
+fn units_to_gpu(units: f64) -> u32 {
+    (units * 11.0 / 14.0 - 1e-9).ceil() as u32
+}
+
+/// GPU cycles to CPU cycles, rounded up (7/11).
+fn gpu_to_cpu(gpu: u32) -> u32 {
+    (gpu as f64 * 7.0 / 11.0 - 1e-9).ceil() as u32
+}
+
 /// Mostly near the drawing area, sometimes far enough to hit the size drop and the 11-bit
 /// wrap.
 fn coordinate() -> impl Strategy<Value = i32> {
@@ -242,6 +253,124 @@ proptest! {
         }
         let vram = g.vram();
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    }
+
+    /// Flat opaque triangles without the E6h mask check (GP0 20h, and 21h whose raw bit an
+    /// untextured polygon ignores), on a cleared VRAM with the mask bit set so that every
+    /// drawn pixel is non-zero: the pixels of the §3 model, only on the lines 480i drawing
+    /// keeps (interlaced 480-line mode with E1h bit 10 clear skips the lines whose bit 0 is
+    /// that of the display start line plus the field, §8), and a drawing time of the
+    /// triangle set-up plus one unit per pixel drawn (docs/emulator.md, "Drawing time").
+    #[test]
+    fn flat_triangles_draw_and_count_the_model_pixels(
+        pts in prop::collection::vec((coordinate(), coordinate()), 3),
+        snap in prop::collection::vec(prop::option::of((0usize..4, -2i32..3)), 3),
+        rgb in any::<[u8; 3]>(),
+        raw in any::<bool>(),
+        interlace in prop::option::of(0u32..2),
+        env in env(),
+    ) {
+        let env = Env { mask: Mask { set: true, check: false }, ..env };
+        // Some vertices on or next to an edge of the drawing area (left, right, top,
+        // bottom), where a span's clip starts to matter.
+        let a = env.area;
+        let pts: Vec<(i32, i32)> = pts.iter().zip(&snap).map(|(&(x, y), s)| match *s {
+            Some((side, d)) => {
+                let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
+                if side < 2 { (edge - env.offset.0, y) } else { (x, edge - env.offset.1) }
+            }
+            None => (x, y),
+        }).collect();
+        let mut g = Gpu::new();
+        // No video timing events (zero-width horizontal range, vertical range past the last
+        // line): the next event is the end of drawing.
+        g.gp1(0x0600_0000);
+        g.gp1(0x07FF_FFFF);
+        if let Some(start) = interlace {
+            g.gp1(0x0800_0025);
+            g.gp1(0x0500_0000 | start << 10);
+        }
+        g.gp0(0xE100_0000 | (env.dither as u32) << 9);
+        g.gp0_words(&env.words());
+        let mut words = vec![(0x20 | raw as u32) << 24 | rgb_word(rgb)];
+        words.extend(pts.iter().map(|p| xy(p.0, p.1)));
+        g.gp0_words(&words);
+
+        let mut expected = Vram::new();
+        let c = rgb8(rgb).map(|c| c as i64);
+        let v = [0, 1, 2].map(|i| env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0]));
+        let mut drawn = 0u32;
+        for p in model::triangle(v, env.clip()) {
+            if interlace.is_some_and(|start| p.y.rem_euclid(2) == start as i64) {
+                continue;
+            }
+            pixel::plot(&mut expected, (p.x, p.y), pixel::flat(rgb8(rgb)), false, None, env.mask);
+            drawn += 1;
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
+        let units = 82.0 + drawn as f64;
+        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
+    }
+
+    /// Gouraud-shaded opaque triangles without the E6h mask check (GP0 30h, and 31h whose
+    /// raw bit an untextured polygon ignores), dithered under E1h bit 9, on a cleared VRAM
+    /// with the mask bit set: the pixels and §3.6 colours of the model, only on the lines
+    /// 480i drawing keeps (§8), and a drawing time of the set-up, the Gouraud set-up and
+    /// two units per pixel drawn (docs/emulator.md, "Drawing time").
+    #[test]
+    fn gouraud_triangles_draw_and_count_the_model_pixels(
+        pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 3]>()), 3),
+        snap in prop::collection::vec(prop::option::of((0usize..4, -2i32..3)), 3),
+        raw in any::<bool>(),
+        interlace in prop::option::of(0u32..2),
+        env in env(),
+    ) {
+        let env = Env { mask: Mask { set: true, check: false }, ..env };
+        let a = env.area;
+        let pts: Vec<(i32, i32, [u8; 3])> = pts.iter().zip(&snap).map(|(&(x, y, c), s)| match *s {
+            Some((side, d)) => {
+                let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
+                if side < 2 { (edge - env.offset.0, y, c) } else { (x, edge - env.offset.1, c) }
+            }
+            None => (x, y, c),
+        }).collect();
+        let mut g = Gpu::new();
+        g.gp1(0x0600_0000);
+        g.gp1(0x07FF_FFFF);
+        if let Some(start) = interlace {
+            g.gp1(0x0800_0025);
+            g.gp1(0x0500_0000 | start << 10);
+        }
+        g.gp0(0xE100_0000 | (env.dither as u32) << 9);
+        g.gp0_words(&env.words());
+        let mut words = vec![];
+        for (i, p) in pts.iter().enumerate() {
+            let cmd = if i == 0 { (0x30 | raw as u32) << 24 } else { 0 };
+            words.push(cmd | rgb_word(p.2));
+            words.push(xy(p.0, p.1));
+        }
+        g.gp0_words(&words);
+
+        let mut expected = Vram::new();
+        let v = [0, 1, 2].map(|i| {
+            let c = rgb8(pts[i].2).map(|c| c as i64);
+            env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0])
+        });
+        let mut drawn = 0u32;
+        for p in model::triangle(v, env.clip()) {
+            if interlace.is_some_and(|start| p.y.rem_euclid(2) == start as i64) {
+                continue;
+            }
+            let c = [0, 1, 2].map(|i| model::channel(p.attr[i], p.x, p.y, env.dither));
+            let color = c[0] | c[1] << 5 | c[2] << 10;
+            pixel::plot(&mut expected, (p.x, p.y), color, false, None, env.mask);
+            drawn += 1;
+        }
+        let vram = g.vram();
+        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
+        let units = 82.0 + 288.0 + 2.0 * drawn as f64;
+        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
     }
 
     /// Flat quads whose vertices are the corners of an axis-aligned rectangle, in every

@@ -756,6 +756,74 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// Flat lines (GP0 40h; 41h, 44h and 45h set bits a line ignores; 42h semi-transparent)
+    /// with both endpoints inside the drawing area, or on or next to its edges, equal the §4
+    /// model, with the mask bit E6h sets (docs/hardware/gpu.md §7) on every point and the
+    /// E1h dither (lines dither whenever it is set, §6), and cost 16 draw units plus 2 per step along
+    /// the major axis (docs/emulator.md, "Drawing time").
+    #[test]
+    fn flat_lines_inside_the_area_match_model(
+        ends in prop::collection::vec((0i32..330, 0i32..230, any::<[u8; 3]>()), 2),
+        snap in prop::collection::vec(prop::option::of((0usize..4, -1i32..2)), 2),
+        area in (0u32..30, 0u32..30, 200u32..320, 150u32..220),
+        (set_mask, dither, ignored) in (any::<bool>(), any::<bool>(), 0u32..4),
+        semi in prop::option::of(0u32..4),
+    ) {
+        // Some endpoints on or next to an edge of the area (left, right, top, bottom).
+        let mut ends = ends;
+        for (e, s) in ends.iter_mut().zip(&snap) {
+            if let Some((side, d)) = *s {
+                let edge = [area.0, area.2, area.1, area.3][side] as i32 + d;
+                if side < 2 { e.0 = edge } else { e.1 = edge }
+            }
+        }
+        let mut g = Gpu::new();
+        // No video timing events: the next event is the end of drawing.
+        g.gp1(0x0600_0000);
+        g.gp1(0x07FF_FFFF);
+        g.gp0_words(&[
+            0xE100_0000 | (dither as u32) << 9 | semi.unwrap_or(0) << 5,
+            0xE300_0000 | area.0 | area.1 << 10,
+            0xE400_0000 | area.2 | area.3 << 10,
+            0xE500_0000,
+            0xE600_0000 | set_mask as u32,
+        ]);
+        let c = ends[0].2;
+        let cmd = 0x40 | (ignored & 1) | (semi.is_some() as u32) << 1 | (ignored >> 1) << 2;
+        g.gp0_words(&[
+            cmd << 24 | c[0] as u32 | (c[1] as u32) << 8 | (c[2] as u32) << 16,
+            xy(ends[0].0, ends[0].1),
+            xy(ends[1].0, ends[1].1),
+        ]);
+        let mut expected = gpu::Vram::new();
+        let e = |i: usize| (ends[i].0 as i64, ends[i].1 as i64, ends[i].2.map(|c| c as i64));
+        let clip = (area.0 as i64, area.1 as i64, area.2 as i64, area.3 as i64);
+        for (x, y, c) in model_line([e(0), e(1)], false, clip) {
+            // Semi-transparent over the cleared VRAM (B = 0): F / 2, F, 0 or F / 4 per
+            // channel (§6).
+            let c = c.map(|c| {
+                let f = model::channel(c as u32, x, y, dither);
+                match semi {
+                    None | Some(1) => f,
+                    Some(0) => f >> 1,
+                    Some(2) => 0,
+                    Some(_) => f >> 2,
+                }
+            });
+            let mask = if set_mask { 0x8000 } else { 0 };
+            expected.set_pixel(x as usize, y as usize, c[0] | c[1] << 5 | c[2] << 10 | mask);
+        }
+        prop_assert!(*g.vram() == expected, "VRAM differs from the model");
+        let steps = (ends[1].0 - ends[0].0).abs().max((ends[1].1 - ends[0].1).abs());
+        let gpu_cycles = ((16 + 2 * steps) as f64 * 11.0 / 14.0 - 1e-9).ceil();
+        let cpu_cycles = (gpu_cycles * 7.0 / 11.0 - 1e-9).ceil() as u32;
+        prop_assert_eq!(g.cycles_until_next_event(), cpu_cycles);
+    }
+}
+
 /// A vertical Gouraud line is not swapped (x0 > x1 is false), so its colour is stepped from
 /// the first vertex (docs/hardware/gpu.md §4, Mednafen's `>`). Red 1 -> 14 over k = 6: step
 /// (13 << 12) / 6 = 8874, so at y = 3 the colour is (1 << 12 | 2048) + 3 * 8874 = 32766 -> 7

@@ -2,16 +2,117 @@
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
 use super::{
-    Coverage, DrawCount, DropReason, PixelEnv, TEX_NONE, line_coverage, shade_pixel, wrap11,
+    DrawCount, PixelEnv, TEX_NONE, exceeds_size_limit, shade_pixel, step_away_from_zero, wrap11,
 };
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
-use crate::primitive::Line;
-use crate::state::DrawState;
+use crate::primitive::{Line, Vertex};
+use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
-/// Per-point step of a 32.32 coordinate over `k` steps, rounded away from zero.
-fn step(delta: i32, k: i32) -> i64 {
-    super::step_away_from_zero(delta, k)
+/// The endpoints with 11-bit coordinates, the left one first, and a flat line's colour (the
+/// first vertex's in command order) on both; `None` when the size limit drops the line
+/// (docs/hardware/gpu.md §4). A line clipped away still walks its points (their cost is
+/// counted); each is rejected by the per-point area test.
+#[inline(always)]
+fn endpoints(line: &Line) -> Option<[Vertex; 2]> {
+    let [mut p0, mut p1] = line.vertices;
+    p0.x = wrap11(p0.x);
+    p0.y = wrap11(p0.y);
+    p1.x = wrap11(p1.x);
+    p1.y = wrap11(p1.y);
+    if exceeds_size_limit((p0.x, p0.y), (p1.x, p1.y)) {
+        return None;
+    }
+    if !line.gouraud {
+        p1.color = p0.color;
+    }
+    if p0.x > p1.x {
+        core::mem::swap(&mut p0, &mut p1);
+    }
+    Some([p0, p1])
+}
+
+/// The points of a segment (docs/hardware/gpu.md §4): `k + 1` of them, from a 32.32 start
+/// with a half-pixel bias, one step apart.
+struct Walk {
+    x: i64,
+    y: i64,
+    x_step: i64,
+    y_step: i64,
+    k: i32,
+}
+
+impl Walk {
+    /// The walk from `p0` to `p1` (wrapped positions), `p0` the left endpoint.
+    #[inline(always)]
+    fn new(p0: (i32, i32), p1: (i32, i32)) -> Walk {
+        let (dx, dy) = (p1.0 - p0.0, p1.1 - p0.1);
+        let k = dx.abs().max(dy.abs());
+        let (x_step, y_step) = if k == 0 {
+            (0, 0)
+        } else {
+            (step_away_from_zero(dx, k), step_away_from_zero(dy, k))
+        };
+        let x = (((p0.0 as i64) << 32) | (1 << 31)) - 1024;
+        let mut y = ((p0.1 as i64) << 32) | (1 << 31);
+        if dy < 0 {
+            y -= 1024;
+        }
+        Walk {
+            x,
+            y,
+            x_step,
+            y_step,
+            k,
+        }
+    }
+
+    /// What stepping the points costs: every point, drawn or not.
+    fn count(&self) -> DrawCount {
+        DrawCount {
+            pixels: self.k as u32 + 1,
+            pairs: 0,
+        }
+    }
+}
+
+/// A flat, opaque, undithered line without the mask test, on every row, from `p0` to `p1`
+/// (offset applied, not yet wrapped), pixel value `value`: every point is one store when all
+/// lie inside the drawing area, which they do when both endpoints do (each point lies in the
+/// box of the two endpoints: over the whole segment the steps fall short of the endpoint by
+/// less than 2^-21 of a pixel, too little to change a pixel). `None` when an endpoint lies
+/// outside (the general [`draw`] then tests each point); a line the size limit drops
+/// (docs/hardware/gpu.md §4) draws and steps nothing.
+#[inline(always)]
+pub(super) fn draw_flat_inside(
+    vram: &mut [u16; VRAM_LEN],
+    area: &DrawingArea,
+    [p0, p1]: [(i32, i32); 2],
+    value: u16,
+) -> Option<DrawCount> {
+    let (mut p0, mut p1) = ((wrap11(p0.0), wrap11(p0.1)), (wrap11(p1.0), wrap11(p1.1)));
+    if exceeds_size_limit(p0, p1) {
+        return Some(DrawCount::default());
+    }
+    if p0.0 > p1.0 {
+        core::mem::swap(&mut p0, &mut p1);
+    }
+    if p0.0 < area.left as i32
+        || p1.0 > area.right as i32
+        || p0.1.min(p1.1) < area.top as i32
+        || p0.1.max(p1.1) > area.bottom as i32
+    {
+        return None;
+    }
+    let walk = Walk::new(p0, p1);
+    let (mut x, mut y) = (walk.x, walk.y);
+    for _ in 0..walk.k + 1 {
+        let (px, py) = ((x >> 32) as usize, (y >> 32) as usize);
+        vram[(py * VRAM_WIDTH + px) & (VRAM_LEN - 1)] = value;
+        x = x.wrapping_add(walk.x_step);
+        y = y.wrapping_add(walk.y_step);
+    }
+    Some(walk.count())
 }
 
 /// Draw with the pixel pipeline fixed by the const parameters.
@@ -30,41 +131,16 @@ pub(super) fn draw<
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
-    let [mut p0, mut p1] = line.vertices;
-    p0.x = wrap11(p0.x);
-    p0.y = wrap11(p0.y);
-    p1.x = wrap11(p1.x);
-    p1.y = wrap11(p1.y);
-    // Size drop (docs/hardware/gpu.md §4). A line clipped away still walks its points (their cost is
-    // counted); each is rejected by the per-point area test below.
-    let coverage = line_coverage([(p0.x, p0.y), (p1.x, p1.y)], &state.area);
-    if coverage == Coverage::Dropped(DropReason::SizeLimit) {
+    let Some([p0, p1]) = endpoints(line) else {
         return DrawCount::default();
-    }
-    if !GOURAUD {
-        // A flat line has the command colour: the first vertex's, before any swap.
-        p1.color = p0.color;
-    }
-    if p0.x > p1.x {
-        core::mem::swap(&mut p0, &mut p1);
-    }
-    let (dx, dy) = (p1.x - p0.x, p1.y - p0.y);
-    let k = dx.abs().max(dy.abs());
-    let (x_step, y_step) = if k == 0 {
-        (0, 0)
-    } else {
-        (step(dx, k), step(dy, k))
     };
-    let mut x = (((p0.x as i64) << 32) | (1 << 31)) - 1024;
-    let mut y = ((p0.y as i64) << 32) | (1 << 31);
-    if dy < 0 {
-        y -= 1024;
-    }
+    let walk = Walk::new((p0.x, p0.y), (p1.x, p1.y));
+    let (mut x, mut y, k) = (walk.x, walk.y, walk.k);
     let mut color = [0i32; 3];
     let mut color_step = [0i32; 3];
     for i in 0..3 {
         color[i] = ((p0.color[i] as i32) << 12) | (1 << 11);
-        if k != 0 {
+        if GOURAUD && k != 0 {
             color_step[i] = ((p1.color[i] as i32 - p0.color[i] as i32) << 12) / k;
         }
     }
@@ -95,16 +171,13 @@ pub(super) fn draw<
                 None,
             );
         }
-        x = x.wrapping_add(x_step);
-        y = y.wrapping_add(y_step);
+        x = x.wrapping_add(walk.x_step);
+        y = y.wrapping_add(walk.y_step);
         if GOURAUD {
             for i in 0..3 {
                 color[i] = color[i].wrapping_add(color_step[i]);
             }
         }
     }
-    DrawCount {
-        pixels: k as u32 + 1,
-        pairs: 0,
-    }
+    walk.count()
 }

@@ -311,15 +311,72 @@ pub(crate) fn fill_span(
     c: u16,
     line: &[u16],
 ) {
-    let len = (x_end - x_start) as usize;
     if let Some(s) = vram.get_mut(row + x_start as usize..row + x_end as usize) {
-        if x_end - x_start >= COPY_SPAN
-            && let Some(src) = line.get(..len)
-        {
-            s.copy_from_slice(src);
-        } else {
-            s.fill(c);
+        fill_row(s, c, line);
+    }
+}
+
+/// Write `c` to every entry of `s`, copying from `line` (empty, or `c` in every entry) when
+/// `s` is long enough to pay.
+#[inline(always)]
+pub(crate) fn fill_row(s: &mut [u16], c: u16, line: &[u16]) {
+    if s.len() >= COPY_SPAN as usize
+        && let Some(src) = line.get(..s.len())
+    {
+        s.copy_from_slice(src);
+    } else {
+        fill_stores(s, c);
+    }
+}
+
+/// Write `c` to every entry of `s` with a few fixed-size stores that may overlap instead of
+/// one store per entry: two or four stores of eight entries (the first and last eight, or
+/// the first sixteen and the last sixteen) for 8 to 32 entries, eight at a time and a last
+/// eight ending at the end of `s` beyond that; the first and last four, or two, or the one
+/// entry below eight. No entry outside `s` is written.
+#[inline(always)]
+pub(crate) fn fill_stores(s: &mut [u16], c: u16) {
+    let n = s.len();
+    let c8 = wide::u16x8::splat(c).to_array();
+    let mut put8 = |at: usize| {
+        if let Some(d) = s.get_mut(at..).and_then(|d| d.first_chunk_mut::<8>()) {
+            *d = c8;
         }
+    };
+    if n >= 8 {
+        if n <= 16 {
+            put8(0);
+            put8(n - 8);
+        } else if n <= 32 {
+            put8(0);
+            put8(8);
+            put8(n - 16);
+            put8(n - 8);
+        } else {
+            for at in (0..n - 8).step_by(8) {
+                put8(at);
+            }
+            put8(n - 8);
+        }
+    } else if n >= 4 {
+        // Four or two entries as one 64- or 32-bit value: one store each.
+        let c4 = wide::bytemuck::cast::<u64, [u16; 4]>(u64::from(c) * 0x0001_0001_0001_0001);
+        if let Some(d) = s.first_chunk_mut::<4>() {
+            *d = c4;
+        }
+        if let Some(d) = s.last_chunk_mut::<4>() {
+            *d = c4;
+        }
+    } else if n >= 2 {
+        let c2 = wide::bytemuck::cast::<u32, [u16; 2]>(u32::from(c) * 0x0001_0001);
+        if let Some(d) = s.first_chunk_mut::<2>() {
+            *d = c2;
+        }
+        if let Some(d) = s.last_chunk_mut::<2>() {
+            *d = c2;
+        }
+    } else if let Some(p) = s.first_mut() {
+        *p = c;
     }
 }
 
@@ -671,6 +728,58 @@ pub(crate) fn draw_triangle_rows(
     }
 }
 
+/// Draw a flat, untextured, opaque triangle (GP0 20h) without mask check, corners `p`
+/// (offset applied), colour `rgb` (docs/hardware/gpu.md §3, §6): what [`draw_triangle_rows`]
+/// does for it, without the pixel environment of other primitives.
+pub(crate) fn draw_flat_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    p: [(i32, i32); 3],
+    rgb: [u8; 3],
+    rows: Rows,
+) -> DrawCount {
+    let color = flat_color(rgb.map(i32::from), if state.mask.set { 0x8000 } else { 0 });
+    let xs = p.map(|p| wrap11(p.0));
+    let width = xs[0].max(xs[1]).max(xs[2]) - xs[0].min(xs[1]).min(xs[2]);
+    let vram = vram.as_array_mut();
+    if width.min(state.area.right as i32 + 1 - state.area.left as i32) >= LINE_WIDTH {
+        let line = [color; crate::VRAM_WIDTH];
+        triangle::draw_flat(vram, state, p, color, &line, rows)
+    } else {
+        triangle::draw_flat(vram, state, p, color, &[], rows)
+    }
+}
+
+/// Draw a Gouraud-shaded, untextured, opaque triangle (GP0 30h) without mask check,
+/// dithered when `tri.dither` (docs/hardware/gpu.md §3, §6): what [`draw_triangle_rows`]
+/// does for it, without the CLUT cache and texture state of textured polygons.
+#[inline(always)]
+pub(crate) fn draw_gouraud_triangle_rows(
+    vram: &mut Vram,
+    state: &DrawState,
+    tri: &Triangle,
+    rows: Rows,
+) -> DrawCount {
+    let vram = vram.as_array_mut();
+    let env = PixelEnv {
+        mask_or: if state.mask.set { 0x8000 } else { 0 },
+        blend: BlendMode::default(),
+        sampler: Sampler::new(&NO_CLUT, 0, 0, state.window),
+        lut: [0; 16],
+        dithered: None,
+        line: &[],
+    };
+    if tri.dither {
+        triangle::draw_inline::<TEX_NONE, true, false, false, true, false>(
+            vram, state, &env, tri, rows,
+        )
+    } else {
+        triangle::draw_inline::<TEX_NONE, true, false, false, false, false>(
+            vram, state, &env, tri, rows,
+        )
+    }
+}
+
 /// Draw one triangle with sub-pixel vertex positions and, when `perspective`, perspective-
 /// correct texture coordinates: a non-hardware path for accuracy studies (see [`precise`]).
 /// The triangle's own vertex positions are ignored in favour of `at`.
@@ -779,6 +888,17 @@ pub(crate) fn draw_line_rows(
     rows: Rows,
 ) -> DrawCount {
     let vram = vram.as_array_mut();
+    let filtered = rows != Rows::All;
+    if !line.gouraud && line.blend.is_none() && !line.dither && !state.mask.check && !filtered {
+        let p = line.vertices.map(|v| (v.x, v.y));
+        let value = flat_color(
+            line.vertices[0].color.map(i32::from),
+            if state.mask.set { 0x8000 } else { 0 },
+        );
+        if let Some(drawn) = line::draw_flat_inside(vram, &state.area, p, value) {
+            return drawn;
+        }
+    }
     let env = PixelEnv {
         mask_or: if state.mask.set { 0x8000 } else { 0 },
         blend: line.blend.unwrap_or_default(),
@@ -794,8 +914,21 @@ pub(crate) fn draw_line_rows(
         state.mask.check,
     );
     use line::draw;
-    let filtered = rows != Rows::All;
     dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
+}
+
+/// Draw a flat, opaque line segment (GP0 40h) from `p[0]` to `p[1]` (offset applied) in
+/// colour `rgb`, undithered, without mask check, on every row, when both endpoints lie
+/// inside the drawing area: what [`draw_line_rows`] does for it. `None` (nothing drawn)
+/// otherwise.
+pub(crate) fn draw_flat_line(
+    vram: &mut Vram,
+    state: &DrawState,
+    p: [(i32, i32); 2],
+    rgb: [u8; 3],
+) -> Option<DrawCount> {
+    let value = flat_color(rgb.map(i32::from), if state.mask.set { 0x8000 } else { 0 });
+    line::draw_flat_inside(vram.as_array_mut(), &state.area, p, value)
 }
 
 /// Draw one rectangle (docs/hardware/gpu.md §5), writing only the lines `rows` keeps. Returns

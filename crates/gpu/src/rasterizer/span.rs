@@ -14,10 +14,6 @@ use wide::{i16x8, i32x8, u16x8, u32x8};
 /// Pixels per group.
 const LANES: usize = 8;
 
-/// Spans shorter than this stay pixel by pixel: a group's fixed work costs more than a
-/// few pixels one at a time.
-pub(super) const MIN_PIXELS: i32 = 4;
-
 /// The dither offsets of eight consecutive pixels starting at a pixel with `x & 3 == c` on a
 /// line with `y & 3 == r`, indexed `[r][c]` (docs/hardware/gpu.md §6).
 static DITHER_LANES: [[[i16; LANES]; 4]; 4] = dither_lanes();
@@ -72,10 +68,12 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
     (c + d).max(i16x8::ZERO).min(i16x8::splat(255)) >> 3
 }
 
-/// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`) for an opaque primitive
-/// without mask check whose texture, if any, is modulated. `acc` holds the five 8.24 attributes at `x_start` (0-2 colour,
-/// 3-4 UV); `flat` is the colour when not `GOURAUD`. A texel of value 0000h leaves its
-/// pixel as it is; others keep their bit 15 (docs/hardware/gpu.md §6, §7).
+/// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`), not empty, for an opaque
+/// primitive without mask check whose texture, if any, is modulated. `acc` holds the five
+/// 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the colour when not
+/// `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep their bit 15
+/// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
+/// untextured one its first and last four, two or one, a textured one pixel by pixel.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
@@ -90,76 +88,151 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
     env: &PixelEnv,
 ) {
     let textured = TEX != super::TEX_NONE;
+    let mask_or = i16x8::splat(env.mask_or as i16);
+    let flat = flat.map(|c| i16x8::splat(c as i16));
+    let dither_row = &DITHER_LANES[(y & 3) as usize];
+    // A span's groups start a multiple of eight pixels apart: the same dither offsets.
     let dither = if DITHER {
-        i16x8::new(DITHER_LANES[(y & 3) as usize][(x_start & 3) as usize])
+        i16x8::new(dither_row[(x_start & 3) as usize])
     } else {
         i16x8::ZERO
     };
-    let mask_or = i16x8::splat(env.mask_or as i16);
-    let flat = flat.map(|c| i16x8::splat(c as i16));
+    let group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
+        Group::<TEX, GOURAUD>::shade(vram, env, flat, mask_or, dither, lanes, n)
+    };
+    let put = put::<TEX>;
     // Attribute `i` of pixel `x + k` in lane `k`.
     let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
     let mut x = x_start;
-    while x < x_end {
-        let start = row + x as usize;
+    while x_end - x > LANES as i32 {
+        let (out, t, _) = group(vram, &lanes, LANES);
+        put(vram, row + x as usize, out, t);
+        for (l, s) in lanes.iter_mut().zip(&steps.group) {
+            *l += *s;
+        }
+        x += LANES as i32;
+    }
+    // The last 1 to 8 pixels.
+    let n = (x_end - x) as usize;
+    let (out, t, texel) = group(vram, &lanes, n);
+    let start = row + x as usize;
+    if n == LANES {
+        put(vram, start, out, t);
+    } else if let Some(dst) = vram.get_mut(start..start + n) {
+        let out = out.to_array();
+        if textured {
+            for (k, d) in dst.iter_mut().enumerate() {
+                if texel[k] != 0 {
+                    *d = out[k];
+                }
+            }
+        } else {
+            copy_ends(dst, &out);
+        }
+    }
+}
+
+/// One group of eight pixels of a span.
+struct Group<const TEX: u8, const GOURAUD: bool>;
+
+impl<const TEX: u8, const GOURAUD: bool> Group<TEX, GOURAUD> {
+    /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
+    /// their values and their texels (0 past the first `n`, which are not fetched).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn shade(
+        vram: &[u16; VRAM_LEN],
+        env: &PixelEnv,
+        flat: [i16x8; 3],
+        mask_or: i16x8,
+        dither: i16x8,
+        lanes: &[u32x8; 5],
+        n: usize,
+    ) -> (u16x8, i16x8, [u16; LANES]) {
+        let textured = TEX != super::TEX_NONE;
         let [r, g, b] = if GOURAUD {
             [integer(lanes[0]), integer(lanes[1]), integer(lanes[2])]
         } else {
             flat
         };
-        let n = ((x_end - x) as usize).min(LANES);
         let mut texel = [0u16; LANES];
         if textured {
-            // Lanes past the span's end are not drawn and need no texel.
             let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
                 *t = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
             }
         }
         let t = i16x8::new(texel.map(|t| t as i16));
-        let out = {
-            let (cr, cg, cb) = if textured {
-                // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
-                let five = i16x8::splat(0x1F);
-                (
-                    ((t & five) * r) >> 4,
-                    (((t >> 5) & five) * g) >> 4,
-                    (((t >> 10) & five) * b) >> 4,
-                )
-            } else {
-                (r, g, b)
-            };
-            to5(cr, dither)
-                | to5(cg, dither) << 5
-                | to5(cb, dither) << 10
-                | (t & i16x8::splat(i16::MIN))
-                | mask_or
+        let (cr, cg, cb) = if textured {
+            // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
+            let five = i16x8::splat(0x1F);
+            (
+                ((t & five) * r) >> 4,
+                (((t >> 5) & five) * g) >> 4,
+                (((t >> 10) & five) * b) >> 4,
+            )
+        } else {
+            (r, g, b)
         };
-        let out = cast::<i16x8, u16x8>(out);
-        if let Some(dst) = vram.get_mut(start..start + n) {
-            if let Ok(dst) = <&mut [u16; LANES]>::try_from(&mut *dst) {
-                *dst = if textured {
-                    // Texel 0000h is transparent: the pixel keeps its value.
-                    let old = u16x8::new(*dst);
-                    cast::<i16x8, u16x8>(t.simd_eq(i16x8::ZERO))
-                        .select(old, out)
-                        .to_array()
-                } else {
-                    out.to_array()
-                };
-            } else {
-                let out = out.to_array();
-                for (k, d) in dst.iter_mut().enumerate() {
-                    if !textured || texel[k] != 0 {
-                        *d = out[k];
-                    }
-                }
-            }
+        let out = to5(cr, dither)
+            | to5(cg, dither) << 5
+            | to5(cb, dither) << 10
+            | (t & i16x8::splat(i16::MIN))
+            | mask_or;
+        (cast::<i16x8, u16x8>(out), t, texel)
+    }
+}
+
+/// Textured spans shorter than this stay pixel by pixel: a group's fixed work, its texel
+/// fetches included, costs more than a few pixels one at a time.
+pub(super) const MIN_TEXTURED_PIXELS: i32 = 4;
+
+/// Copy the first `dst.len()` (1 to 7) entries of `out` to `dst` as two copies of its first
+/// and last four, two or one entries, which may overlap.
+#[inline(always)]
+fn copy_ends(dst: &mut [u16], out: &[u16; LANES]) {
+    let n = dst.len();
+    if n >= 4 {
+        if let (Some(d), Some(s)) = (dst.first_chunk_mut::<4>(), out.first_chunk::<4>()) {
+            *d = *s;
         }
-        for (l, s) in lanes.iter_mut().zip(&steps.group) {
-            *l += *s;
+        if let (Some(d), Some(s)) = (
+            dst.last_chunk_mut::<4>(),
+            out.get(n - 4..).and_then(|s| s.first_chunk::<4>()),
+        ) {
+            *d = *s;
         }
-        x += LANES as i32;
+    } else if n >= 2 {
+        if let (Some(d), Some(s)) = (dst.first_chunk_mut::<2>(), out.first_chunk::<2>()) {
+            *d = *s;
+        }
+        if let (Some(d), Some(s)) = (
+            dst.last_chunk_mut::<2>(),
+            out.get(n - 2..).and_then(|s| s.first_chunk::<2>()),
+        ) {
+            *d = *s;
+        }
+    } else if let (Some(d), Some(&s)) = (dst.first_mut(), out.first()) {
+        *d = s;
+    }
+}
+
+/// Write the eight pixels `out` at `start`; a texel `t` of 0000h is transparent: the pixel
+/// keeps its value.
+#[inline(always)]
+fn put<const TEX: u8>(vram: &mut [u16; VRAM_LEN], start: usize, out: u16x8, t: i16x8) {
+    if let Some(dst) = vram
+        .get_mut(start..)
+        .and_then(|d| d.first_chunk_mut::<LANES>())
+    {
+        *dst = if TEX != super::TEX_NONE {
+            let old = u16x8::new(*dst);
+            cast::<i16x8, u16x8>(t.simd_eq(i16x8::ZERO))
+                .select(old, out)
+                .to_array()
+        } else {
+            out.to_array()
+        };
     }
 }
 

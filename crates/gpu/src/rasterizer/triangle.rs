@@ -44,6 +44,110 @@ fn edge_step(dx: i32, dy: i32) -> i64 {
     super::step_away_from_zero(dx, dy)
 }
 
+/// The rows `[top, bottom)` of one part of a triangle and the edges bounding them
+/// (docs/hardware/gpu.md §3.4): spans are `[left, right)` at each row.
+#[derive(Clone, Copy)]
+struct Part {
+    top: i32,
+    bottom: i32,
+    left: Edge,
+    right: Edge,
+}
+
+/// A triangle's core vertex and edges (docs/hardware/gpu.md §3.3-§3.4).
+struct Setup {
+    /// Sorted position of the core vertex.
+    core: usize,
+    /// Rows `[y0, y1)` bounded by v0->v1, then `[y1, y2)` bounded by v1->v2, each with the
+    /// base edge v0->v2.
+    parts: [Part; 2],
+}
+
+/// Core vertex, Y sort and edges (docs/hardware/gpu.md §3.3-§3.4) of the vertices `v`, whose
+/// wrapped positions `at` gives, for a triangle [`triangle_coverage`] draws (not collinear, so
+/// y0 < y2 and the gradient denominator is not 0); returns them in sorted order with the
+/// set-up.
+#[inline(always)]
+fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> ([T; 3], Setup) {
+    // Core vertex from X before sorting (docs/hardware/gpu.md §3.3).
+    let p = v.each_ref().map(&at);
+    let mut core = if p[1].0 <= p[0].0 {
+        if p[2].0 <= p[1].0 { 2 } else { 1 }
+    } else if p[2].0 < p[0].0 {
+        2
+    } else {
+        0
+    };
+    for (i, j) in [(1, 2), (0, 1), (1, 2)] {
+        if at(&v[j]).1 < at(&v[i]).1 {
+            v.swap(i, j);
+            if core == i {
+                core = j;
+            } else if core == j {
+                core = i;
+            }
+        }
+    }
+    let [a, b, c] = v.each_ref().map(&at);
+    let base_step = edge_step(c.0 - a.0, c.1 - a.1);
+    let (upper_step, right_facing) = if b.1 == a.1 {
+        (0, b.0 > a.0)
+    } else {
+        let s = edge_step(b.0 - a.0, b.1 - a.1);
+        (s, s > base_step)
+    };
+    let lower_step = if c.1 == b.1 {
+        0
+    } else {
+        edge_step(c.0 - b.0, c.1 - b.1)
+    };
+    // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
+    // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
+    // core vertex from below is walked bottom-up on the console: its bound edge starts at the
+    // lower vertex and each row pre-decrements. Each edge is thus linear in y from an anchor
+    // row: core a, the bound edges are anchored at a (upper part) and b (lower part); core b,
+    // both at b; core c, at b (upper part) and c (lower part). Rows are independent, so they
+    // are drawn top-down with the edges stepped by addition from the first drawn row.
+    let base = Edge {
+        x: a.0,
+        y: a.1,
+        step: base_step,
+    };
+    let (upper_anchor, lower_anchor) = match core {
+        0 => (a, b),
+        1 => (b, b),
+        _ => (b, c),
+    };
+    let part = |top, bottom, anchor: (i32, i32), step| {
+        let bound = Edge {
+            x: anchor.0,
+            y: anchor.1,
+            step,
+        };
+        let (left, right) = if right_facing {
+            (base, bound)
+        } else {
+            (bound, base)
+        };
+        Part {
+            top,
+            bottom,
+            left,
+            right,
+        }
+    };
+    (
+        v,
+        Setup {
+            core,
+            parts: [
+                part(a.1, b.1, upper_anchor, upper_step),
+                part(b.1, c.1, lower_anchor, lower_step),
+            ],
+        },
+    )
+}
+
 /// Truncating division by a triangle's gradient denominator, one hardware divide per
 /// triangle instead of two per attribute: `n / den` (rounded toward zero) as
 /// `(|n| * r) >> 64` with `r = floor(2^64 / |den|) + 1`, exact while `|n| * |den| < 2^64`
@@ -91,6 +195,235 @@ fn gradient(v: &[Vtx; 3], i: usize, den: Divisor) -> (u32, u32) {
     ((ddx as i32 as u32) << 12, (ddy as i32 as u32) << 12)
 }
 
+/// Draw a flat, untextured, opaque, undithered triangle without mask check with corners `p`
+/// (offset applied, not yet wrapped): every pixel of a span is the primitive's one pixel
+/// value `color` (docs/hardware/gpu.md §3.7, §6), written with plain stores. `line` is
+/// empty or holds `color` in every entry (see [`super::fill_span`]).
+pub(super) fn draw_flat(
+    vram: &mut [u16; VRAM_LEN],
+    state: &DrawState,
+    p: [(i32, i32); 3],
+    color: u16,
+    line: &[u16],
+    rows: super::Rows,
+) -> DrawCount {
+    let mut drawn = DrawCount::default();
+    let p = p.map(|(x, y)| (wrap11(x), wrap11(y)));
+    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
+    if let Coverage::Dropped(_) = triangle_coverage(p, &state.area) {
+        return drawn;
+    }
+    let (_, setup) = setup(p, |&p| p);
+    let area = state.area;
+    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
+    let clip = (area.left as i32, area.right as i32 + 1);
+    // On every row of its part an edge's integer part lies between the X of its two
+    // vertices: it starts 2^-21 of a pixel short of x + 1, and its rounded-away step gains
+    // less than 2^-32 of a pixel per row over the exact slope, under 2^-23 over 511 rows
+    // (docs/hardware/gpu.md §3.4). So a triangle whose vertices lie inside the drawing
+    // area's columns needs no per-row clip (§3.5).
+    let (min_x, max_x) = (
+        p[0].0.min(p[1].0).min(p[2].0),
+        p[0].0.max(p[1].0).max(p[2].0),
+    );
+    let inside = min_x >= clip.0 && max_x <= clip.1;
+    let stride = match rows {
+        super::Rows::All => 1,
+        super::Rows::SkipParity(_) => 2,
+    };
+    for part in setup.parts {
+        let first = rows.first(part.top.max(clip_top));
+        let last = part.bottom.min(clip_bottom);
+        if first >= last {
+            continue;
+        }
+        let walk = FlatRows {
+            y: first,
+            last,
+            stride,
+            l: part.left.at(first),
+            r: part.right.at(first),
+            dl: part.left.step * stride as i64,
+            dr: part.right.step * stride as i64,
+            clip,
+            color,
+        };
+        drawn.pixels += match (inside, line.is_empty()) {
+            (true, true) => walk.draw::<false, false>(vram, &[]),
+            (false, true) => walk.draw::<true, false>(vram, &[]),
+            (true, false) => walk.draw::<false, true>(vram, line),
+            (false, false) => walk.draw::<true, true>(vram, line),
+        };
+    }
+    drawn
+}
+
+/// The rows of one part of a flat triangle: from row `y` to `last` (exclusive) every
+/// `stride` rows, the span `[l >> 32, r >> 32)` at each, the edges stepping by `dl` and
+/// `dr`, clipped to the columns `clip` (docs/hardware/gpu.md §3.4-§3.5).
+struct FlatRows {
+    y: i32,
+    last: i32,
+    stride: i32,
+    l: i64,
+    r: i64,
+    dl: i64,
+    dr: i64,
+    clip: (i32, i32),
+    color: u16,
+}
+
+impl FlatRows {
+    /// Write the spans; returns the pixels written. Without `CLIP` every span lies inside
+    /// the clip columns already. With `LINE`, `line` holds the pixel value in every entry and
+    /// long spans are copied from it (see [`super::fill_span`]).
+    #[inline(never)]
+    fn draw<const CLIP: bool, const LINE: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        line: &[u16],
+    ) -> u32 {
+        let Self {
+            mut y,
+            last,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            color,
+        } = self;
+        let mut pixels = 0;
+        let (lines, _) = vram.as_chunks_mut::<VRAM_WIDTH>();
+        while y < last {
+            let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
+            if CLIP {
+                x_start = x_start.max(clip.0);
+                x_end = x_end.min(clip.1);
+            }
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                pixels += (x_end - x_start) as u32;
+                // `x_start` is at or right of the clip's left column, 0 or more.
+                let span = x_start as u32 as usize..x_end as u32 as usize;
+                if let Some(s) = lines[(y & 511) as usize].get_mut(span) {
+                    if LINE {
+                        super::fill_row(s, color, line);
+                    } else {
+                        super::fill_stores(s, color);
+                    }
+                }
+            }
+            y += stride;
+        }
+        pixels
+    }
+}
+
+/// The rows of one part of a triangle drawn in eight-pixel groups (see [`span::draw`]): from
+/// row `y` to `last` (exclusive) every `stride` rows, the span `[l >> 32, r >> 32)` at each
+/// clipped to the columns `clip`, the edges stepping by `dl` and `dr`; `attr` holds the
+/// attributes at column 0 of row `y` and steps by `attr_step` per row walked
+/// (docs/hardware/gpu.md §3.4-§3.6).
+struct GroupRows {
+    y: i32,
+    last: i32,
+    stride: i32,
+    l: i64,
+    r: i64,
+    dl: i64,
+    dr: i64,
+    clip: (i32, i32),
+    attr: [u32; 5],
+    attr_step: [u32; 5],
+}
+
+impl GroupRows {
+    /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
+    /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+    #[inline(never)]
+    fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const CLIP: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        step: [u32; 5],
+        flat: [i32; 3],
+        env: &PixelEnv,
+    ) -> u32 {
+        let Self {
+            mut y,
+            last,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            mut attr,
+            attr_step,
+        } = self;
+        let lanes = &span::LaneSteps::new(step);
+        let mut pixels = 0;
+        while y < last {
+            let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
+            if CLIP {
+                x_start = x_start.max(clip.0);
+                x_end = x_end.min(clip.1);
+            }
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                pixels += (x_end - x_start) as u32;
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                let mut acc: [u32; 5] = core::array::from_fn(|i| {
+                    attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
+                });
+                if TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS {
+                    span::draw::<TEX, GOURAUD, DITHER>(
+                        vram, row, y, x_start, x_end, acc, lanes, flat, env,
+                    );
+                } else {
+                    let dither_row = &DITHER_TABLES[(y & 3) as usize];
+                    for x in x_start..x_end {
+                        let rgb = if GOURAUD {
+                            [
+                                (acc[0] >> 24) as i32,
+                                (acc[1] >> 24) as i32,
+                                (acc[2] >> 24) as i32,
+                            ]
+                        } else {
+                            flat
+                        };
+                        shade_pixel::<TEX, false, false, false>(
+                            vram,
+                            row + x as usize,
+                            rgb,
+                            (acc[3] >> 24) as u8,
+                            (acc[4] >> 24) as u8,
+                            if DITHER {
+                                &dither_row[(x & 3) as usize]
+                            } else {
+                                &PLAIN_TABLE
+                            },
+                            env,
+                            None,
+                        );
+                        for (a, s) in acc.iter_mut().zip(step) {
+                            *a = a.wrapping_add(s);
+                        }
+                    }
+                }
+            }
+            for (a, s) in attr.iter_mut().zip(attr_step) {
+                *a = a.wrapping_add(s);
+            }
+            y += stride;
+        }
+        pixels
+    }
+}
+
 /// Draw with the pixel pipeline fixed by the const parameters.
 pub(super) fn draw<
     const TEX: u8,
@@ -106,8 +439,33 @@ pub(super) fn draw<
     tri: &Triangle,
     rows: super::Rows,
 ) -> DrawCount {
+    draw_inline::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(vram, state, env, tri, rows)
+}
+
+/// [`draw`], inlined into a caller that builds the triangle itself, so that its vertices
+/// need not pass through memory.
+#[inline(always)]
+pub(super) fn draw_inline<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    state: &DrawState,
+    env: &PixelEnv,
+    tri: &Triangle,
+    rows: super::Rows,
+) -> DrawCount {
+    if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
+        let color = super::flat_color(tri.vertices[0].color.map(i32::from), env.mask_or);
+        let p = tri.vertices.map(|v| (v.x, v.y));
+        return draw_flat(vram, state, p, color, env.line, rows);
+    }
     let mut drawn = DrawCount::default();
-    let mut v = tri.vertices.map(|p| Vtx {
+    let verts = tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
@@ -119,40 +477,17 @@ pub(super) fn draw<
         ],
     });
     // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
-    let corners = [(v[0].x, v[0].y), (v[1].x, v[1].y), (v[2].x, v[2].y)];
+    let corners = verts.map(|v| (v.x, v.y));
     if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
         return drawn;
     }
-    // Core vertex from X before sorting (docs/hardware/gpu.md §3.3).
-    let mut core = if v[1].x <= v[0].x {
-        if v[2].x <= v[1].x { 2 } else { 1 }
-    } else if v[2].x < v[0].x {
-        2
-    } else {
-        0
-    };
-    for (i, j) in [(1, 2), (0, 1), (1, 2)] {
-        if v[j].y < v[i].y {
-            v.swap(i, j);
-            if core == i {
-                core = j;
-            } else if core == j {
-                core = i;
-            }
-        }
-    }
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
     let (a, b, c) = (v[0], v[1], v[2]);
-    if a.y == c.y {
-        return drawn;
-    }
     let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
-    if den == 0 {
-        return drawn;
-    }
     // Attribute set-up: 0-2 colour, 3-4 UV.
     let mut grads = [(0u32, 0u32); 5];
     let mut origin = [0u32; 5];
-    let cv = v[core];
+    let cv = v[setup.core];
     let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
     let divisor = Divisor::new(den);
     for i in 0..5 {
@@ -162,25 +497,11 @@ pub(super) fn draw<
         origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
     }
     let flat = tri.vertices[0].color.map(|c| c as i32);
-
-    let base_step = edge_step(c.x - a.x, c.y - a.y);
-    let (upper_step, right_facing) = if b.y == a.y {
-        (0, b.x > a.x)
-    } else {
-        let s = edge_step(b.x - a.x, b.y - a.y);
-        (s, s > base_step)
-    };
-    let lower_step = if c.y == b.y {
-        0
-    } else {
-        edge_step(c.x - b.x, c.y - b.y)
-    };
     let area = state.area;
     let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
     let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
     // Per-triangle copies, so the row and pixel loops keep them in registers.
     let env = *env;
-    let flat_color = super::flat_color(flat, env.mask_or);
     let step = grads.map(|g| g.0);
     // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
     // time; a 4-bit texture under one colour keeps its shaded CLUT instead (undithered, or
@@ -207,7 +528,6 @@ pub(super) fn draw<
                 (a.y.max(clip_top), c.y.min(clip_bottom)),
             )
         });
-    let lanes = groups.then(|| span::LaneSteps::new(step));
     // A 4-bit page under the identity window whose 64 halfwords and 256 lines lie inside
     // VRAM without wrapping: texel (u, v) is the halfword at this index plus v * 1024 + u / 4.
     let plain_page = (TEX == 1 && env.sampler.window_is_identity()).then(|| {
@@ -219,42 +539,17 @@ pub(super) fn draw<
         s.page_x + 64 <= VRAM_WIDTH && s.page_y + 256 <= 512
     });
 
-    // The two parts (docs/hardware/gpu.md §3.4): rows [a.y, b.y) bounded by a->b and rows
-    // [b.y, c.y) bounded by b->c; the base edge a->c is measured from a. A part touching the
-    // core vertex from below is walked bottom-up on the console: its bound edge starts at the
-    // lower vertex and each row pre-decrements. Each edge is thus linear in y from an anchor
-    // row: core a, the bound edges are anchored at a (upper part) and b (lower part); core b,
-    // both at b; core c, at b (upper part) and c (lower part). Rows are independent, so they
-    // are drawn top-down here with the edges stepped by addition from the first drawn row.
-    let base = Edge {
-        x: a.x,
-        y: a.y,
-        step: base_step,
-    };
-    let (upper_anchor, lower_anchor) = match core {
-        0 => (a, b),
-        1 => (b, b),
-        _ => (b, c),
-    };
-    let parts = [
-        (a.y, b.y, upper_anchor, upper_step),
-        (b.y, c.y, lower_anchor, lower_step),
-    ];
     let stride = match rows {
         super::Rows::All => 1,
         super::Rows::SkipParity(_) => 2,
     };
-    for (top, bottom, anchor, bound_step) in parts {
-        let bound = Edge {
-            x: anchor.x,
-            y: anchor.y,
-            step: bound_step,
-        };
-        let (left, right) = if right_facing {
-            (base, bound)
-        } else {
-            (bound, base)
-        };
+    for Part {
+        top,
+        bottom,
+        left,
+        right,
+    } in setup.parts
+    {
         let first = rows.first(top.max(clip_top));
         let last = bottom.min(clip_bottom);
         if first >= last {
@@ -262,6 +557,36 @@ pub(super) fn draw<
         }
         let (mut l, mut r) = (left.at(first), right.at(first));
         let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
+        if groups {
+            // Attribute `i` at column 0 of row `first`, 8.24 with 32-bit wrap (§3.6).
+            let dy = first.wrapping_sub(cv.y) as u32;
+            let dx = cv.x.wrapping_neg() as u32;
+            let walk = GroupRows {
+                y: first,
+                last,
+                stride,
+                l,
+                r,
+                dl,
+                dr,
+                clip: (clip_left, clip_right),
+                attr: core::array::from_fn(|i| {
+                    origin[i]
+                        .wrapping_add(grads[i].0.wrapping_mul(dx))
+                        .wrapping_add(grads[i].1.wrapping_mul(dy))
+                }),
+                attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
+            };
+            // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
+            // inside the area's columns need no clip.
+            let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
+            drawn.pixels += if inside {
+                walk.draw::<TEX, GOURAUD, DITHER, false>(vram, step, flat, &env)
+            } else {
+                walk.draw::<TEX, GOURAUD, DITHER, true>(vram, step, flat, &env)
+            };
+            continue;
+        }
         let mut y = first;
         while y < last {
             let x_start = ((l >> 32) as i32).max(clip_left);
@@ -271,23 +596,7 @@ pub(super) fn draw<
             if x_start < x_end {
                 drawn.span(x_start, x_end, BLEND || MASK_CHECK);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
-                if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
-                    super::fill_span(vram, row, x_start, x_end, flat_color, env.line);
-                } else if let Some(lanes) = lanes
-                    .as_ref()
-                    .filter(|_| x_end - x_start >= span::MIN_PIXELS)
                 {
-                    let dx = x_start.wrapping_sub(cv.x) as u32;
-                    let dy = y.wrapping_sub(cv.y) as u32;
-                    let acc = core::array::from_fn(|i| {
-                        origin[i]
-                            .wrapping_add(grads[i].0.wrapping_mul(dx))
-                            .wrapping_add(grads[i].1.wrapping_mul(dy))
-                    });
-                    span::draw::<TEX, GOURAUD, DITHER>(
-                        vram, row, y, x_start, x_end, acc, lanes, flat, &env,
-                    );
-                } else {
                     let dx = x_start.wrapping_sub(cv.x) as u32;
                     let dy = y.wrapping_sub(cv.y) as u32;
                     let mut acc = [0u32; 5];
