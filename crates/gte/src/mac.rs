@@ -16,6 +16,45 @@ pub const fn wrap44(value: i64) -> i64 {
     (value << 20) >> 20
 }
 
+/// Whether an accumulation of `terms` products (each at most 2^30 in magnitude) from `start`
+/// keeps every partial sum inside the 44-bit range (docs/hardware/gte.md §4): then it is plain
+/// addition, with no flag and no wrap.
+#[inline(always)]
+pub const fn is_plain_start(start: i64, terms: usize) -> bool {
+    let margin = terms as i64 * PRODUCT_MAX;
+    start >= MAC_MIN + margin && start <= MAC_MAX - margin
+}
+
+/// Accumulate into MACn (n = 1..3): `start` plus each product in turn, FLAG bit 31-n or
+/// 28-n into `flags` and a wrap to 44 bits after every addition (docs/hardware/gte.md §4).
+/// `plain` says that `start` satisfies [`is_plain_start`], so that no step can overflow and
+/// the sum is plain addition.
+#[inline(always)]
+pub(crate) fn accumulate(
+    flags: &mut u32,
+    n: usize,
+    start: i64,
+    products: &[i64],
+    plain: bool,
+) -> i64 {
+    debug_assert!(products.iter().all(|p| p.abs() <= PRODUCT_MAX));
+    if plain {
+        debug_assert!(is_plain_start(start, products.len()));
+        return products.iter().fold(start, |sum, &p| sum + p);
+    }
+    let mut sum = start;
+    for &p in products {
+        sum += p;
+        if sum > MAC_MAX {
+            *flags |= bit::mac_positive(n);
+        } else if sum < MAC_MIN {
+            *flags |= bit::mac_negative(n);
+        }
+        sum = wrap44(sum);
+    }
+    sum
+}
+
 /// Saturate to `min..=max`, reporting whether the value was out of range.
 pub const fn clamp(value: i64, min: i64, max: i64) -> (i64, bool) {
     if value < min {
@@ -71,22 +110,8 @@ impl Gte {
     /// sum is then plain addition, with no flag and no wrap. With `start` 0 that holds always.
     #[inline(always)]
     pub(crate) fn accumulate(&mut self, n: usize, start: i64, products: &[i64]) -> i64 {
-        debug_assert!(products.iter().all(|p| p.abs() <= PRODUCT_MAX));
-        let margin = products.len() as i64 * PRODUCT_MAX;
-        if start >= MAC_MIN + margin && start <= MAC_MAX - margin {
-            return products.iter().fold(start, |sum, &p| sum + p);
-        }
-        let mut sum = start;
-        for &p in products {
-            sum += p;
-            if sum > MAC_MAX {
-                self.flag_bits |= bit::mac_positive(n);
-            } else if sum < MAC_MIN {
-                self.flag_bits |= bit::mac_negative(n);
-            }
-            sum = wrap44(sum);
-        }
-        sum
+        let plain = is_plain_start(start, products.len());
+        accumulate(&mut self.flag_bits, n, start, products, plain)
     }
 
     /// MACn = low 32 bits of (sum SAR shift) (docs/hardware/gte.md §4).

@@ -369,6 +369,19 @@ impl RegisterFile {
         ]
     }
 
+    /// The matrix from control register `base` as [`RegisterFile::matrix`], each entry
+    /// sign-extended to 64 bits straight from its word (no 16-bit array in between).
+    #[inline(always)]
+    fn matrix_wide(&self, base: usize) -> [[i64; 3]; 3] {
+        let lo = |k: usize| self.control[base + k] as i16 as i64;
+        let hi = |k: usize| (self.control[base + k] as i32 >> 16) as i64;
+        [
+            [lo(0), hi(0), lo(1)],
+            [hi(1), lo(2), hi(2)],
+            [lo(3), hi(3), lo(4)],
+        ]
+    }
+
     /// The three 32-bit words from control register `base`.
     #[inline(always)]
     fn vector(&self, base: usize) -> [i32; 3] {
@@ -397,6 +410,12 @@ impl RegisterFile {
         self.matrix(8)
     }
 
+    /// Light matrix LLM (c8-c12), widened.
+    #[inline(always)]
+    pub(crate) fn llm_wide(&self) -> [[i64; 3]; 3] {
+        self.matrix_wide(8)
+    }
+
     /// Background colour BK (c13-c15).
     #[inline(always)]
     pub(crate) fn bk(&self) -> [i32; 3] {
@@ -407,6 +426,12 @@ impl RegisterFile {
     #[inline(always)]
     pub(crate) fn lcm(&self) -> Matrix {
         self.matrix(16)
+    }
+
+    /// Light colour matrix LCM (c16-c20), widened.
+    #[inline(always)]
+    pub(crate) fn lcm_wide(&self) -> [[i64; 3]; 3] {
+        self.matrix_wide(16)
     }
 
     /// Far colour FC (c21-c23).

@@ -1,11 +1,13 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
+use crate::mac::accumulate;
 
 impl Gte {
     /// Interpolate `input` towards the far colour by IR0 (docs/hardware/gte.md §8): first
     /// MACn = ((FCn << 12) minus in_n) SAR sf with IRn saturated to the lm=0 range whatever lm
-    /// is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm.
+    /// is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. Every input is below 2^27 in
+    /// magnitude, so the second sum is plain addition.
     #[inline(always)]
     pub(crate) fn depth_cue_interpolate(&mut self, input: [i64; 3], shift: u32, lm: bool) {
         let fc = self.regs.fc();
@@ -16,7 +18,13 @@ impl Gte {
         let ir0 = self.regs.ir(0) as i64;
         let ir = self.ir_vector();
         for n in 1..=3 {
-            let sum = self.accumulate(n, input[n - 1], &[ir[n - 1] * ir0]);
+            let sum = accumulate(
+                &mut self.flag_bits,
+                n,
+                input[n - 1],
+                &[ir[n - 1] * ir0],
+                true,
+            );
             self.set_mac_ir(n, sum, shift, lm);
         }
     }

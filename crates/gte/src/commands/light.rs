@@ -1,28 +1,309 @@
 //! Lighting commands: NCS/NCT, NCCS/NCCT, NCDS/NCDT, CC and CDP (docs/hardware/gte.md §8).
+//!
+//! A command reads its operands once, carries the MAC1-3 and IR1-3 values of each step to the
+//! next, and stores the last step's MAC1-3 and IR1-3, the colours it pushes and its FLAG bits
+//! at the end: the registers then hold what the hardware's step-by-step writes leave.
 
 use crate::Gte;
-use crate::commands::matrix::widen;
+use crate::mac::{accumulate, bit, clamp, is_plain_start};
+use crate::registers::RegisterFile;
 
-impl Gte {
-    /// The normal-colour steps for vertex Vi: IR = LLM * Vi, then IR = BK + LCM * IR.
+/// The operands of a lighting command, read once per command.
+struct Lighting {
+    /// Light matrix LLM, widened.
+    llm: [[i64; 3]; 3],
+    /// Light colour matrix LCM, widened.
+    lcm: [[i64; 3]; 3],
+    /// Background colour BK << 12, the start of the second step.
+    bk: [i64; 3],
+    /// Far colour FC << 12, the start of the depth cue's first step.
+    fc: [i64; 3],
+    /// RGBC colour bytes R, G, B.
+    color: [i64; 3],
+    /// RGBC's CODE byte, in place.
+    code: u32,
+    /// IR0, the depth-cue weight.
+    ir0: i64,
+    /// 0 or 12 (sf).
+    shift: u32,
+    lm: bool,
+}
+
+/// MAC1-3 and IR1-3 after one step.
+#[derive(Clone, Copy)]
+struct Step {
+    mac: [i32; 3],
+    ir: [i64; 3],
+}
+
+/// MACn = low 32 bits of (sum SAR sf); IRn = MACn saturated to 0 (`lm`) or -8000h up to 7FFFh,
+/// FLAG bit 25-n (docs/hardware/gte.md §4).
+#[inline(always)]
+fn mac_ir(flags: &mut u32, n: usize, sum: i64, shift: u32, lm: bool) -> (i32, i64) {
+    let mac = (sum >> shift) as i32;
+    let (ir, saturated) = clamp(mac as i64, if lm { 0 } else { -0x8000 }, 0x7FFF);
+    if saturated {
+        *flags |= bit::ir(n);
+    }
+    (mac, ir)
+}
+
+/// Colour FIFO entry from MAC1-3: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n, packed
+/// R | G << 8 | B << 16 over `code` (docs/hardware/gte.md §4).
+#[inline(always)]
+fn color(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
+    let mut packed = code;
+    for n in 1..=3 {
+        let (c, saturated) = clamp((mac[n - 1] >> 4) as i64, 0, 0xFF);
+        if saturated {
+            *flags |= bit::color(n);
+        }
+        packed |= (c as u32) << (8 * (n - 1));
+    }
+    packed
+}
+
+impl Lighting {
     #[inline(always)]
-    fn normal_light(&mut self, index: usize, shift: u32, lm: bool) {
-        let llm = widen(&self.regs.llm());
-        let v = self.regs.v(index).map(i64::from);
-        self.multiply_add(&llm, v, [0; 3], shift, lm);
-        self.background_light(shift, lm);
+    fn read(regs: &RegisterFile, shift: u32, lm: bool) -> Self {
+        let rgbc = regs.rgbc();
+        Lighting {
+            llm: regs.llm_wide(),
+            lcm: regs.lcm_wide(),
+            bk: regs.bk().map(|b| (b as i64) << 12),
+            fc: regs.fc().map(|f| (f as i64) << 12),
+            color: [0, 8, 16].map(|s| ((rgbc >> s) & 0xFF) as i64),
+            code: rgbc & 0xFF00_0000,
+            ir0: regs.ir(0) as i64,
+            shift,
+            lm,
+        }
+    }
+
+    /// Whether every sum from BK (three products) and from FC (one product) is plain
+    /// addition (docs/hardware/gte.md §4), for every vertex alike.
+    #[inline(always)]
+    fn plain(&self) -> bool {
+        self.bk.iter().all(|&b| is_plain_start(b, 3))
+            && self.fc.iter().all(|&f| is_plain_start(f, 1))
+    }
+
+    /// MACn = (start_n + row n of `m` * `v`) SAR sf, IRn by lm.
+    #[inline(always)]
+    fn matrix_step(
+        &self,
+        flags: &mut u32,
+        m: &[[i64; 3]; 3],
+        v: [i64; 3],
+        start: [i64; 3],
+        plain: bool,
+    ) -> Step {
+        let mut step = Step {
+            mac: [0; 3],
+            ir: [0; 3],
+        };
+        for row in 0..3 {
+            let r = m[row];
+            let sum = accumulate(
+                flags,
+                row + 1,
+                start[row],
+                &[r[0] * v[0], r[1] * v[1], r[2] * v[2]],
+                plain,
+            );
+            (step.mac[row], step.ir[row]) = mac_ir(flags, row + 1, sum, self.shift, self.lm);
+        }
+        step
+    }
+
+    /// A vertex of a normal-colour command: its last step and its colour.
+    #[inline(always)]
+    fn vertex<const PLAIN: bool>(&self, flags: &mut u32, v: [i16; 3], how: Finish) -> (Step, u32) {
+        let lit = self.normal_light::<PLAIN>(flags, v);
+        let last = match how {
+            Finish::Light => lit,
+            Finish::Color => self.color_step(flags, lit.ir),
+            Finish::DepthCue => self.depth_cue::<PLAIN>(flags, lit.ir),
+        };
+        (last, color(flags, last.mac, self.code))
+    }
+
+    /// IR = LLM * V, then IR = BK + LCM * IR (the normal-colour steps).
+    #[inline(always)]
+    fn normal_light<const PLAIN: bool>(&self, flags: &mut u32, v: [i16; 3]) -> Step {
+        let light = self.matrix_step(flags, &self.llm, v.map(i64::from), [0; 3], true);
+        self.background_light::<PLAIN>(flags, light.ir)
     }
 
     /// IR = BK + LCM * IR.
     #[inline(always)]
-    fn background_light(&mut self, shift: u32, lm: bool) {
-        let lcm = widen(&self.regs.lcm());
-        let ir = self.ir_vector();
-        let bk = self.regs.bk().map(i64::from);
-        self.multiply_add(&lcm, ir, bk, shift, lm);
+    fn background_light<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
+        self.matrix_step(flags, &self.lcm, ir, self.bk, PLAIN)
     }
 
     /// (Cn * IRn) << 4 with Cn the RGBC colour bytes.
+    #[inline(always)]
+    fn color_times(&self, ir: [i64; 3]) -> [i64; 3] {
+        [0, 1, 2].map(|n| (self.color[n] * ir[n]) << 4)
+    }
+
+    /// MACn = ((Cn * IRn) << 4) SAR sf, IRn by lm (the NCCS/CC colour step).
+    #[inline(always)]
+    fn color_step(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
+        let products = self.color_times(ir);
+        let mut step = Step {
+            mac: [0; 3],
+            ir: [0; 3],
+        };
+        for (n, p) in products.into_iter().enumerate() {
+            let sum = accumulate(flags, n + 1, 0, &[p], true);
+            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, self.shift, self.lm);
+        }
+        step
+    }
+
+    /// The depth cue of (Cn * IRn) << 4 towards FC by IR0 (docs/hardware/gte.md §8): MACn =
+    /// ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range, then MACn =
+    /// (IRn * IR0 + in_n) SAR sf with IRn by lm. The second sum starts below 2^27 in
+    /// magnitude, so it is plain addition.
+    #[inline(always)]
+    fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
+        let input = self.color_times(ir);
+        let (fc, ir0) = (self.fc, self.ir0);
+        let mut far = [0; 3];
+        for n in 0..3 {
+            let sum = accumulate(flags, n + 1, fc[n], &[-input[n]], PLAIN);
+            far[n] = mac_ir(flags, n + 1, sum, self.shift, false).1;
+        }
+        let mut step = Step {
+            mac: [0; 3],
+            ir: [0; 3],
+        };
+        for n in 0..3 {
+            let sum = accumulate(flags, n + 1, input[n], &[far[n] * ir0], true);
+            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, self.shift, self.lm);
+        }
+        step
+    }
+}
+
+/// What a lighting command does after the normal-colour steps.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Finish {
+    /// NCS/NCT: the colour from BK + LCM * IR.
+    Light,
+    /// NCCS/NCCT: times RGBC.
+    Color,
+    /// NCDS/NCDT: times RGBC, depth-cued towards FC.
+    DepthCue,
+}
+
+impl Gte {
+    /// Store the last step's MAC1-3 and IR1-3, push `colors` in order and add `flags`.
+    #[inline(always)]
+    fn lighting_result(&mut self, last: Step, colors: &[u32], flags: u32) {
+        for n in 0..3 {
+            self.regs.set_mac(n + 1, last.mac[n]);
+            self.regs.set_ir(n + 1, last.ir[n] as i16);
+        }
+        for &c in colors {
+            self.regs.push_rgb(c);
+        }
+        self.flag_bits |= flags;
+    }
+
+    /// The normal-colour commands on `COUNT` vertices from V0 (1 or 3), with BK and FC sums
+    /// plain or not by `PLAIN`.
+    #[inline(always)]
+    fn normal_color<const COUNT: usize, const PLAIN: bool>(
+        &mut self,
+        shift: u32,
+        lm: bool,
+        how: Finish,
+    ) {
+        let l = Lighting::read(&self.regs, shift, lm);
+        let mut flags = 0;
+        let mut colors = [0; COUNT];
+        let (mut last, c) = l.vertex::<PLAIN>(&mut flags, self.regs.v(0), how);
+        colors[0] = c;
+        if COUNT == 3 {
+            (_, colors[1]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(1), how);
+            (last, colors[2]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(2), how);
+        }
+        self.lighting_result(last, &colors, flags);
+    }
+
+    #[inline(always)]
+    fn normal_color_command<const COUNT: usize>(&mut self, shift: u32, lm: bool, how: Finish) {
+        if Lighting::read(&self.regs, shift, lm).plain() {
+            self.normal_color::<COUNT, true>(shift, lm, how);
+        } else {
+            self.normal_color::<COUNT, false>(shift, lm, how);
+        }
+    }
+
+    /// NCS: light V0.
+    pub(crate) fn ncs(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<1>(shift, lm, Finish::Light);
+    }
+
+    /// NCT: light V0, V1, V2.
+    pub(crate) fn nct(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<3>(shift, lm, Finish::Light);
+    }
+
+    /// NCCS: light V0 and multiply by RGBC.
+    pub(crate) fn nccs(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<1>(shift, lm, Finish::Color);
+    }
+
+    /// NCCT: NCCS for V0, V1, V2.
+    pub(crate) fn ncct(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<3>(shift, lm, Finish::Color);
+    }
+
+    /// NCDS: light V0, multiply by RGBC, depth-cue towards FC.
+    pub(crate) fn ncds(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<1>(shift, lm, Finish::DepthCue);
+    }
+
+    /// NCDT: NCDS for V0, V1, V2.
+    pub(crate) fn ncdt(&mut self, shift: u32, lm: bool) {
+        self.normal_color_command::<3>(shift, lm, Finish::DepthCue);
+    }
+
+    /// CC and CDP: IR = BK + LCM * IR, then times RGBC (and depth-cued towards FC).
+    #[inline(always)]
+    fn color_color(&mut self, shift: u32, lm: bool, how: Finish) {
+        let ir = self.ir_vector();
+        let l = Lighting::read(&self.regs, shift, lm);
+        let plain = l.plain();
+        let mut flags = 0;
+        let lit = l.matrix_step(&mut flags, &l.lcm, ir, l.bk, plain);
+        let last = if how == Finish::DepthCue {
+            if plain {
+                l.depth_cue::<true>(&mut flags, lit.ir)
+            } else {
+                l.depth_cue::<false>(&mut flags, lit.ir)
+            }
+        } else {
+            l.color_step(&mut flags, lit.ir)
+        };
+        let c = color(&mut flags, last.mac, l.code);
+        self.lighting_result(last, &[c], flags);
+    }
+
+    /// CC: IR = BK + LCM * IR, multiply by RGBC.
+    pub(crate) fn cc(&mut self, shift: u32, lm: bool) {
+        self.color_color(shift, lm, Finish::Color);
+    }
+
+    /// CDP: IR = BK + LCM * IR, multiply by RGBC, depth-cue towards FC.
+    pub(crate) fn cdp(&mut self, shift: u32, lm: bool) {
+        self.color_color(shift, lm, Finish::DepthCue);
+    }
+
+    /// (Cn * IRn) << 4 with Cn the RGBC colour bytes and IRn the registers.
     #[inline(always)]
     pub(crate) fn color_times_ir(&self) -> [i64; 3] {
         let c = self.regs.rgbc();
@@ -32,84 +313,5 @@ impl Gte {
             (((c >> 8) & 0xFF) as i64 * ir[1]) << 4,
             (((c >> 16) & 0xFF) as i64 * ir[2]) << 4,
         ]
-    }
-
-    /// MACn = ((Cn * IRn) << 4) SAR sf, IRn by lm (the NCCS/CC colour step).
-    #[inline(always)]
-    fn color_step(&mut self, shift: u32, lm: bool) {
-        let products = self.color_times_ir();
-        for (n, p) in products.into_iter().enumerate() {
-            let sum = self.accumulate(n + 1, 0, &[p]);
-            self.set_mac_ir(n + 1, sum, shift, lm);
-        }
-    }
-
-    fn ncs_vertex(&mut self, index: usize, shift: u32, lm: bool) {
-        self.normal_light(index, shift, lm);
-        self.push_color();
-    }
-
-    fn nccs_vertex(&mut self, index: usize, shift: u32, lm: bool) {
-        self.normal_light(index, shift, lm);
-        self.color_step(shift, lm);
-        self.push_color();
-    }
-
-    fn ncds_vertex(&mut self, index: usize, shift: u32, lm: bool) {
-        self.normal_light(index, shift, lm);
-        let input = self.color_times_ir();
-        self.depth_cue_interpolate(input, shift, lm);
-        self.push_color();
-    }
-
-    /// NCS: light V0.
-    pub(crate) fn ncs(&mut self, shift: u32, lm: bool) {
-        self.ncs_vertex(0, shift, lm);
-    }
-
-    /// NCT: light V0, V1, V2.
-    pub(crate) fn nct(&mut self, shift: u32, lm: bool) {
-        for i in 0..3 {
-            self.ncs_vertex(i, shift, lm);
-        }
-    }
-
-    /// NCCS: light V0 and multiply by RGBC.
-    pub(crate) fn nccs(&mut self, shift: u32, lm: bool) {
-        self.nccs_vertex(0, shift, lm);
-    }
-
-    /// NCCT: NCCS for V0, V1, V2.
-    pub(crate) fn ncct(&mut self, shift: u32, lm: bool) {
-        for i in 0..3 {
-            self.nccs_vertex(i, shift, lm);
-        }
-    }
-
-    /// NCDS: light V0, multiply by RGBC, depth-cue towards FC.
-    pub(crate) fn ncds(&mut self, shift: u32, lm: bool) {
-        self.ncds_vertex(0, shift, lm);
-    }
-
-    /// NCDT: NCDS for V0, V1, V2.
-    pub(crate) fn ncdt(&mut self, shift: u32, lm: bool) {
-        for i in 0..3 {
-            self.ncds_vertex(i, shift, lm);
-        }
-    }
-
-    /// CC: IR = BK + LCM * IR, multiply by RGBC.
-    pub(crate) fn cc(&mut self, shift: u32, lm: bool) {
-        self.background_light(shift, lm);
-        self.color_step(shift, lm);
-        self.push_color();
-    }
-
-    /// CDP: IR = BK + LCM * IR, multiply by RGBC, depth-cue towards FC.
-    pub(crate) fn cdp(&mut self, shift: u32, lm: bool) {
-        self.background_light(shift, lm);
-        let input = self.color_times_ir();
-        self.depth_cue_interpolate(input, shift, lm);
-        self.push_color();
     }
 }
