@@ -66,6 +66,41 @@ pub const fn clamp(value: i64, min: i64, max: i64) -> (i64, bool) {
     }
 }
 
+/// IRn for a MAC value: saturated to 0 (`lm`) or -8000h up to 7FFFh, FLAG bit 25-n into
+/// `flags` (docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn saturate_ir(flags: &mut u32, n: usize, value: i32, lm: bool) -> i16 {
+    let (ir, saturated) = clamp(value as i64, if lm { 0 } else { -0x8000 }, 0x7FFF);
+    if saturated {
+        *flags |= bit::ir(n);
+    }
+    ir as i16
+}
+
+/// MACn = low 32 bits of (sum SAR sf) and IRn from it, as [`saturate_ir`]
+/// (docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn mac_ir(flags: &mut u32, n: usize, sum: i64, shift: u32, lm: bool) -> (i32, i64) {
+    let mac = (sum >> shift) as i32;
+    (mac, saturate_ir(flags, n, mac, lm) as i64)
+}
+
+/// Colour FIFO entry from MAC1-3: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n into
+/// `flags`, packed R | G << 8 | B << 16 over `code`, the CODE byte in place
+/// (docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn color_entry(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
+    let mut packed = code;
+    for n in 1..=3 {
+        let (c, saturated) = clamp((mac[n - 1] >> 4) as i64, 0, 0xFF);
+        if saturated {
+            *flags |= bit::color(n);
+        }
+        packed |= (c as u32) << (8 * (n - 1));
+    }
+    packed
+}
+
 /// Bits of the FLAG register, by position (docs/hardware/gte.md §3).
 pub mod bit {
     /// MACn > 2^43 - 1: bit 31 - n.
@@ -126,12 +161,7 @@ impl Gte {
     /// without storing it.
     #[inline(always)]
     pub(crate) fn saturate_ir(&mut self, n: usize, value: i32, lm: bool) -> i16 {
-        let min = if lm { 0 } else { -0x8000 };
-        let (v, saturated) = clamp(value as i64, min, 0x7FFF);
-        if saturated {
-            self.flag_bits |= bit::ir(n);
-        }
-        v as i16
+        saturate_ir(&mut self.flag_bits, n, value, lm)
     }
 
     /// IRn = clamp(value) with FLAG bit 25-n (docs/hardware/gte.md §4).
@@ -169,14 +199,9 @@ impl Gte {
     /// R | G << 8 | B << 16 | CODE << 24 (docs/hardware/gte.md §4).
     #[inline(always)]
     pub(crate) fn push_color(&mut self) {
-        let mut packed = self.regs.rgbc() & 0xFF00_0000;
-        for n in 1..=3 {
-            let (c, saturated) = clamp((self.regs.mac(n) >> 4) as i64, 0, 0xFF);
-            if saturated {
-                self.flag_bits |= bit::color(n);
-            }
-            packed |= (c as u32) << (8 * (n - 1));
-        }
+        let mac = [self.regs.mac(1), self.regs.mac(2), self.regs.mac(3)];
+        let code = self.regs.rgbc() & 0xFF00_0000;
+        let packed = color_entry(&mut self.flag_bits, mac, code);
         self.regs.push_rgb(packed);
     }
 }

@@ -5,7 +5,7 @@
 //! at the end: the registers then hold what the hardware's step-by-step writes leave.
 
 use crate::Gte;
-use crate::mac::{accumulate, bit, clamp, is_plain_start};
+use crate::mac::{accumulate, color_entry as color, is_plain_start, mac_ir};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command.
@@ -34,33 +34,6 @@ struct Lighting {
 struct Step {
     mac: [i32; 3],
     ir: [i64; 3],
-}
-
-/// MACn = low 32 bits of (sum SAR sf); IRn = MACn saturated to 0 (`lm`) or -8000h up to 7FFFh,
-/// FLAG bit 25-n (docs/hardware/gte.md §4).
-#[inline(always)]
-fn mac_ir(flags: &mut u32, n: usize, sum: i64, shift: u32, lm: bool) -> (i32, i64) {
-    let mac = (sum >> shift) as i32;
-    let (ir, saturated) = clamp(mac as i64, if lm { 0 } else { -0x8000 }, 0x7FFF);
-    if saturated {
-        *flags |= bit::ir(n);
-    }
-    (mac, ir)
-}
-
-/// Colour FIFO entry from MAC1-3: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n, packed
-/// R | G << 8 | B << 16 over `code` (docs/hardware/gte.md §4).
-#[inline(always)]
-fn color(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
-    let mut packed = code;
-    for n in 1..=3 {
-        let (c, saturated) = clamp((mac[n - 1] >> 4) as i64, 0, 0xFF);
-        if saturated {
-            *flags |= bit::color(n);
-        }
-        packed |= (c as u32) << (8 * (n - 1));
-    }
-    packed
 }
 
 impl Lighting {
