@@ -101,6 +101,42 @@ pub(crate) fn color_entry(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
     packed
 }
 
+/// MAC1-3 and IR1-3 after one step of a command. Commands carry a step's values to the next
+/// step in locals and store the last step's at the end, which leaves the registers as the
+/// hardware's step-by-step writes do.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Step {
+    pub(crate) mac: [i32; 3],
+    pub(crate) ir: [i64; 3],
+}
+
+/// One step: MACn = (start_n + the products of row n) SAR sf and IRn from it by lm, for
+/// n = 1..3, FLAG bits into `flags` (docs/hardware/gte.md §4). `plain` as for
+/// [`accumulate`], for every row.
+#[inline(always)]
+pub(crate) fn step<const TERMS: usize>(
+    flags: &mut u32,
+    start: [i64; 3],
+    products: [[i64; TERMS]; 3],
+    plain: bool,
+    shift: u32,
+    lm: bool,
+) -> Step {
+    let mut step = Step::default();
+    for n in 0..3 {
+        let sum = accumulate(flags, n + 1, start[n], &products[n], plain);
+        (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
+    }
+    step
+}
+
+/// The products of each row of `m` with `v`, in column order (the terms of a matrix row's
+/// sum, docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn matrix_products(m: &[[i64; 3]; 3], v: [i64; 3]) -> [[i64; 3]; 3] {
+    m.map(|r| [r[0] * v[0], r[1] * v[1], r[2] * v[2]])
+}
+
 /// Bits of the FLAG register, by position (docs/hardware/gte.md §3).
 pub mod bit {
     /// MACn > 2^43 - 1: bit 31 - n.
@@ -203,6 +239,20 @@ impl Gte {
         let code = self.regs.rgbc() & 0xFF00_0000;
         let packed = color_entry(&mut self.flag_bits, mac, code);
         self.regs.push_rgb(packed);
+    }
+
+    /// Store a step's MAC1-3 and IR1-3, push `colors` in order onto the colour FIFO and add
+    /// `flags` to FLAG.
+    #[inline(always)]
+    pub(crate) fn step_result(&mut self, last: Step, colors: &[u32], flags: u32) {
+        for n in 0..3 {
+            self.regs.set_mac(n + 1, last.mac[n]);
+            self.regs.set_ir(n + 1, last.ir[n] as i16);
+        }
+        for &c in colors {
+            self.regs.push_rgb(c);
+        }
+        self.flag_bits |= flags;
     }
 }
 

@@ -398,16 +398,16 @@ impl RegisterFile {
         self.matrix(0)
     }
 
+    /// Rotation matrix RT (c0-c4), widened.
+    #[inline(always)]
+    pub(crate) fn rt_wide(&self) -> [[i64; 3]; 3] {
+        self.matrix_wide(0)
+    }
+
     /// Translation TR (c5-c7).
     #[inline(always)]
     pub(crate) fn tr(&self) -> [i32; 3] {
         self.vector(5)
-    }
-
-    /// Light matrix LLM (c8-c12).
-    #[inline(always)]
-    pub(crate) fn llm(&self) -> Matrix {
-        self.matrix(8)
     }
 
     /// Light matrix LLM (c8-c12), widened.
@@ -420,12 +420,6 @@ impl RegisterFile {
     #[inline(always)]
     pub(crate) fn bk(&self) -> [i32; 3] {
         self.vector(13)
-    }
-
-    /// Light colour matrix LCM (c16-c20).
-    #[inline(always)]
-    pub(crate) fn lcm(&self) -> Matrix {
-        self.matrix(16)
     }
 
     /// Light colour matrix LCM (c16-c20), widened.

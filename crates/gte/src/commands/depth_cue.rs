@@ -1,32 +1,37 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
-use crate::mac::accumulate;
+use crate::mac::{Step, is_plain_start, step};
+
+/// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
+/// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
+/// whatever lm is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. `plain` says that
+/// every FCn << 12 leaves room for one product (docs/hardware/gte.md §4); every input is below
+/// 2^27 in magnitude, so the second sum is plain addition.
+#[inline(always)]
+pub(crate) fn interpolate(
+    flags: &mut u32,
+    input: [i64; 3],
+    fc: [i64; 3],
+    ir0: i64,
+    plain: bool,
+    shift: u32,
+    lm: bool,
+) -> Step {
+    let far = step(flags, fc, input.map(|i| [-i]), plain, shift, false);
+    let products = [0, 1, 2].map(|n| [far.ir[n] * ir0]);
+    step(flags, input, products, true, shift, lm)
+}
 
 impl Gte {
-    /// Interpolate `input` towards the far colour by IR0 (docs/hardware/gte.md §8): first
-    /// MACn = ((FCn << 12) minus in_n) SAR sf with IRn saturated to the lm=0 range whatever lm
-    /// is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. Every input is below 2^27 in
-    /// magnitude, so the second sum is plain addition.
+    /// MAC1-3 and IR1-3 from [`interpolate`] of `input` towards FC by IR0.
     #[inline(always)]
     pub(crate) fn depth_cue_interpolate(&mut self, input: [i64; 3], shift: u32, lm: bool) {
-        let fc = self.regs.fc();
-        for n in 1..=3 {
-            let sum = self.accumulate(n, (fc[n - 1] as i64) << 12, &[-input[n - 1]]);
-            self.set_mac_ir(n, sum, shift, false);
-        }
+        let fc = self.regs.fc().map(|f| (f as i64) << 12);
+        let plain = fc.iter().all(|&f| is_plain_start(f, 1));
         let ir0 = self.regs.ir(0) as i64;
-        let ir = self.ir_vector();
-        for n in 1..=3 {
-            let sum = accumulate(
-                &mut self.flag_bits,
-                n,
-                input[n - 1],
-                &[ir[n - 1] * ir0],
-                true,
-            );
-            self.set_mac_ir(n, sum, shift, lm);
-        }
+        let last = interpolate(&mut self.flag_bits, input, fc, ir0, plain, shift, lm);
+        self.step_result(last, &[], 0);
     }
 
     /// Colour bytes R, G, B of `rgb` shifted left 16.
@@ -74,25 +79,24 @@ impl Gte {
     /// GPF: MACn = (IRn * IR0) SAR sf.
     #[inline]
     pub(crate) fn gpf(&mut self, shift: u32, lm: bool) {
-        let ir0 = self.regs.ir(0) as i64;
-        let ir = self.ir_vector();
-        for n in 1..=3 {
-            let sum = self.accumulate(n, 0, &[ir[n - 1] * ir0]);
-            self.set_mac_ir(n, sum, shift, lm);
-        }
-        self.push_color();
+        self.general_interpolate([0; 3], shift, lm);
     }
 
     /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf.
     #[inline]
     pub(crate) fn gpl(&mut self, shift: u32, lm: bool) {
+        let start = [1, 2, 3].map(|n| (self.regs.mac(n) as i64) << shift);
+        self.general_interpolate(start, shift, lm);
+    }
+
+    /// MACn = (start_n + IRn * IR0) SAR sf, IRn by lm, and the colour pushed (GPF, GPL).
+    #[inline(always)]
+    fn general_interpolate(&mut self, start: [i64; 3], shift: u32, lm: bool) {
         let ir0 = self.regs.ir(0) as i64;
-        let ir = self.ir_vector();
-        for n in 1..=3 {
-            let base = (self.regs.mac(n) as i64) << shift;
-            let sum = self.accumulate(n, base, &[ir[n - 1] * ir0]);
-            self.set_mac_ir(n, sum, shift, lm);
-        }
+        let products = self.ir_vector().map(|ir| [ir * ir0]);
+        let plain = start.iter().all(|&s| is_plain_start(s, 1));
+        let last = step(&mut self.flag_bits, start, products, plain, shift, lm);
+        self.step_result(last, &[], 0);
         self.push_color();
     }
 }

@@ -5,7 +5,8 @@
 //! at the end: the registers then hold what the hardware's step-by-step writes leave.
 
 use crate::Gte;
-use crate::mac::{accumulate, color_entry as color, is_plain_start, mac_ir};
+use crate::commands::depth_cue::interpolate;
+use crate::mac::{Step, color_entry as color, is_plain_start, matrix_products, step};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command.
@@ -27,13 +28,6 @@ struct Lighting {
     /// 0 or 12 (sf).
     shift: u32,
     lm: bool,
-}
-
-/// MAC1-3 and IR1-3 after one step.
-#[derive(Clone, Copy)]
-struct Step {
-    mac: [i32; 3],
-    ir: [i64; 3],
 }
 
 impl Lighting {
@@ -71,22 +65,8 @@ impl Lighting {
         start: [i64; 3],
         plain: bool,
     ) -> Step {
-        let mut step = Step {
-            mac: [0; 3],
-            ir: [0; 3],
-        };
-        for row in 0..3 {
-            let r = m[row];
-            let sum = accumulate(
-                flags,
-                row + 1,
-                start[row],
-                &[r[0] * v[0], r[1] * v[1], r[2] * v[2]],
-                plain,
-            );
-            (step.mac[row], step.ir[row]) = mac_ir(flags, row + 1, sum, self.shift, self.lm);
-        }
-        step
+        let products = matrix_products(m, v);
+        step(flags, start, products, plain, self.shift, self.lm)
     }
 
     /// A vertex of a normal-colour command: its last step and its colour.
@@ -123,16 +103,8 @@ impl Lighting {
     /// MACn = ((Cn * IRn) << 4) SAR sf, IRn by lm (the NCCS/CC colour step).
     #[inline(always)]
     fn color_step(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
-        let products = self.color_times(ir);
-        let mut step = Step {
-            mac: [0; 3],
-            ir: [0; 3],
-        };
-        for (n, p) in products.into_iter().enumerate() {
-            let sum = accumulate(flags, n + 1, 0, &[p], true);
-            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, self.shift, self.lm);
-        }
-        step
+        let products = self.color_times(ir).map(|p| [p]);
+        step(flags, [0; 3], products, true, self.shift, self.lm)
     }
 
     /// The depth cue of (Cn * IRn) << 4 towards FC by IR0 (docs/hardware/gte.md §8): MACn =
@@ -142,21 +114,7 @@ impl Lighting {
     #[inline(always)]
     fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
         let input = self.color_times(ir);
-        let (fc, ir0) = (self.fc, self.ir0);
-        let mut far = [0; 3];
-        for n in 0..3 {
-            let sum = accumulate(flags, n + 1, fc[n], &[-input[n]], PLAIN);
-            far[n] = mac_ir(flags, n + 1, sum, self.shift, false).1;
-        }
-        let mut step = Step {
-            mac: [0; 3],
-            ir: [0; 3],
-        };
-        for n in 0..3 {
-            let sum = accumulate(flags, n + 1, input[n], &[far[n] * ir0], true);
-            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, self.shift, self.lm);
-        }
-        step
+        interpolate(flags, input, self.fc, self.ir0, PLAIN, self.shift, self.lm)
     }
 }
 
@@ -172,19 +130,6 @@ enum Finish {
 }
 
 impl Gte {
-    /// Store the last step's MAC1-3 and IR1-3, push `colors` in order and add `flags`.
-    #[inline(always)]
-    fn lighting_result(&mut self, last: Step, colors: &[u32], flags: u32) {
-        for n in 0..3 {
-            self.regs.set_mac(n + 1, last.mac[n]);
-            self.regs.set_ir(n + 1, last.ir[n] as i16);
-        }
-        for &c in colors {
-            self.regs.push_rgb(c);
-        }
-        self.flag_bits |= flags;
-    }
-
     /// The normal-colour commands on `COUNT` vertices from V0 (1 or 3), with BK and FC sums
     /// plain or not by `PLAIN`.
     #[inline(always)]
@@ -203,7 +148,7 @@ impl Gte {
             (_, colors[1]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(1), how);
             (last, colors[2]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(2), how);
         }
-        self.lighting_result(last, &colors, flags);
+        self.step_result(last, &colors, flags);
     }
 
     #[inline(always)]
@@ -263,7 +208,7 @@ impl Gte {
             l.color_step(&mut flags, lit.ir)
         };
         let c = color(&mut flags, last.mac, l.code);
-        self.lighting_result(last, &[c], flags);
+        self.step_result(last, &[c], flags);
     }
 
     /// CC: IR = BK + LCM * IR, multiply by RGBC.

@@ -3,56 +3,27 @@
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::registers::Matrix;
-
-/// Widen a stored matrix for the multiply.
-pub(crate) fn widen(m: &Matrix) -> [[i64; 3]; 3] {
-    m.map(|row| row.map(i64::from))
-}
+use crate::mac::{is_plain_start, matrix_products, step};
 
 impl Gte {
-    /// MACn/IRn for n = 1..3 from `t << 12 + m * v` (docs/hardware/gte.md §4).
-    #[inline(always)]
-    pub(crate) fn multiply_add(
-        &mut self,
-        m: &[[i64; 3]; 3],
-        v: [i64; 3],
-        t: [i64; 3],
-        shift: u32,
-        lm: bool,
-    ) {
-        for row in 0..3 {
-            let r = m[row];
-            let sum = self.accumulate(
-                row + 1,
-                t[row] << 12,
-                &[r[0] * v[0], r[1] * v[1], r[2] * v[2]],
-            );
-            self.set_mac_ir(row + 1, sum, shift, lm);
-        }
-    }
-
     /// IR1-3 widened.
+    #[inline(always)]
     pub(crate) fn ir_vector(&self) -> [i64; 3] {
-        [
-            self.regs.ir(1) as i64,
-            self.regs.ir(2) as i64,
-            self.regs.ir(3) as i64,
-        ]
+        [1, 2, 3].map(|n| self.regs.ir(n) as i64)
     }
 
     /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
         let m = match c.mx() {
-            MatrixSel::Rotation => widen(&self.regs.rt()),
-            MatrixSel::Light => widen(&self.regs.llm()),
-            MatrixSel::LightColor => widen(&self.regs.lcm()),
+            MatrixSel::Rotation => self.regs.rt_wide(),
+            MatrixSel::Light => self.regs.llm_wide(),
+            MatrixSel::LightColor => self.regs.lcm_wide(),
             MatrixSel::Garbage => {
                 // Rows [-(R<<4), R<<4, IR0], [RT13]x3, [RT22]x3 (docs/hardware/gte.md §8).
                 let r = ((self.regs.rgbc() & 0xFF) as i64) << 4;
-                let rt = self.regs.rt();
-                let (rt13, rt22) = (rt[0][2] as i64, rt[1][1] as i64);
+                let rt = self.regs.rt_wide();
+                let (rt13, rt22) = (rt[0][2], rt[1][1]);
                 [[-r, r, self.regs.ir(0) as i64], [rt13; 3], [rt22; 3]]
             }
         };
@@ -63,15 +34,19 @@ impl Gte {
             VectorSel::Ir => self.ir_vector(),
         };
         let t = match c.cv() {
-            TranslationSel::Translation => self.regs.tr().map(i64::from),
-            TranslationSel::Background => self.regs.bk().map(i64::from),
+            TranslationSel::Translation => self.regs.tr(),
+            TranslationSel::Background => self.regs.bk(),
             TranslationSel::FarColor => {
                 self.mvmva_far_color_bug(&m, v, shift, lm);
                 return;
             }
             TranslationSel::None => [0; 3],
         };
-        self.multiply_add(&m, v, t, shift, lm);
+        let start = t.map(|t| (t as i64) << 12);
+        let plain = start.iter().all(|&s| is_plain_start(s, 3));
+        let mut flags = 0;
+        let last = step(&mut flags, start, matrix_products(&m, v), plain, shift, lm);
+        self.step_result(last, &[], flags);
     }
 
     /// cv=2: per row, FC<<12 + M_n1*V1 is formed and flagged (44-bit and an IR check with the

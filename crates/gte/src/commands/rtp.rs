@@ -121,10 +121,10 @@ impl Gte {
             let (dqa, dqb) = self.regs.depth_cue();
             let d = q * dqa as i64 + dqb as i64;
             self.set_mac0(d);
-            let (ir0, saturated) = clamp(d >> 12, 0, 0x1000);
-            if saturated {
-                self.flag_bits |= bit::IR0;
-            }
+            // A select, not a branch: whether IR0 saturates depends on the depth.
+            let v = d >> 12;
+            let ir0 = v.clamp(0, 0x1000);
+            self.flag_bits |= ((ir0 != v) as u32).wrapping_neg() & bit::IR0;
             self.regs.set_ir(0, ir0 as i16);
         }
     }
