@@ -46,6 +46,40 @@ fn cmd(op: Opcode, sf: bool, lm: bool) -> u32 {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
+    /// RTPT on three equal vertices leaves the registers RTPS run three times on that vertex
+    /// leaves (each vertex is steps 1-6 of docs/hardware/gte.md §5 and the last also step 7;
+    /// RTPT's FLAG is the OR of three equal vertices' bits), in every divide mode of the build.
+    #[test]
+    fn rtpt_of_equal_vertices_is_rtps_three_times(
+        regs in prop::collection::vec(any::<u32>(), 64),
+        sf in any::<bool>(),
+        lm in any::<bool>(),
+    ) {
+        let modes = [DivideMode::Unr, DivideMode::Exact, DivideMode::F32];
+        for mode in modes.into_iter().filter(|m| m.is_supported()) {
+            let mut a = Gte::new();
+            prop_assert_eq!(a.set_divide_mode(mode), Ok(()));
+            for (i, v) in regs.iter().enumerate() {
+                // Skip the writes with side effects on other registers (SXYP, IRGB, LZCS).
+                if !matches!(i, 15 | 28 | 30) {
+                    a.write(i as u32, *v);
+                }
+            }
+            a.write(2, regs[0]);
+            a.write(3, regs[1]);
+            a.write(4, regs[0]);
+            a.write(5, regs[1]);
+            let mut b = a.clone();
+            for _ in 0..3 {
+                a.execute(cmd(Opcode::Rtps, sf, lm));
+            }
+            b.execute(cmd(Opcode::Rtpt, sf, lm));
+            for r in 0..64 {
+                prop_assert_eq!(a.read(r), b.read(r), "register {} in {:?}", r, mode);
+            }
+        }
+    }
+
     /// Any register state and any 32-bit command word: no panic (overflow checks are on in
     /// tests), every register readable, FLAG bits 0-11 zero and bit 31 the OR of its sources.
     #[test]

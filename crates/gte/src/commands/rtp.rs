@@ -5,23 +5,23 @@ use crate::DivideMode;
 use crate::mac::{bit, clamp};
 use crate::{Gte, unr};
 
-/// Divide selectors for the const parameter of the projection: the mode is chosen once per
-/// command, so the hardware path carries no per-vertex branch for the knob.
+/// Divide selectors for the const parameter of the projection. RTPT chooses the mode once
+/// per command, so the hardware path carries no per-vertex branch for the knob; RTPS, with
+/// one vertex, reads it at the divide ([`BY_MODE`]), which keeps one copy of the vertex's code.
 const UNR: u8 = 0;
 #[cfg(feature = "divide-modes")]
 const EXACT: u8 = 1;
 #[cfg(feature = "divide-modes")]
 const F32: u8 = 2;
+#[cfg(feature = "divide-modes")]
+const BY_MODE: u8 = 3;
 
 impl Gte {
     /// RTPS: project V0; depth cue from it.
+    #[inline(always)]
     pub(crate) fn rtps(&mut self, shift: u32, lm: bool) {
         #[cfg(feature = "divide-modes")]
-        match self.divide_mode {
-            DivideMode::Exact => self.project_vertex::<EXACT>(0, shift, lm, true),
-            DivideMode::F32 => self.project_vertex::<F32>(0, shift, lm, true),
-            DivideMode::Unr => self.project_vertex::<UNR>(0, shift, lm, true),
-        }
+        self.project_vertex::<BY_MODE>(0, shift, lm, true);
         #[cfg(not(feature = "divide-modes"))]
         self.project_vertex::<UNR>(0, shift, lm, true);
     }
@@ -94,7 +94,9 @@ impl Gte {
             UNR => unr::unr_divide(h, sz3),
             #[cfg(feature = "divide-modes")]
             EXACT => unr::exact_divide(h, sz3),
-            _ => unr::f32_divide(h, sz3),
+            #[cfg(feature = "divide-modes")]
+            F32 => unr::f32_divide(h, sz3),
+            _ => unr::divide(self.divide_mode, h, sz3),
         };
         if overflow {
             self.flag_bits |= bit::DIVIDE;
