@@ -224,10 +224,12 @@ impl Gte {
     /// FLAG bits 16/15 for a MAC0-path value.
     #[inline(always)]
     pub(crate) fn flag_mac0(&mut self, value: i64) {
-        if value > i32::MAX as i64 {
-            self.flag_bits |= bit::MAC0_POSITIVE;
-        } else if value < i32::MIN as i64 {
-            self.flag_bits |= bit::MAC0_NEGATIVE;
+        if value as i32 as i64 != value {
+            self.flag_bits |= if value < 0 {
+                bit::MAC0_NEGATIVE
+            } else {
+                bit::MAC0_POSITIVE
+            };
         }
     }
 

@@ -91,12 +91,17 @@ impl Gte {
         // Divide (step 5).
         let (h, sz3) = (self.regs.h(), sz3 as u16);
         let (q, overflow) = match MODE {
-            UNR => unr::unr_divide(h, sz3),
             #[cfg(feature = "divide-modes")]
             EXACT => unr::exact_divide(h, sz3),
             #[cfg(feature = "divide-modes")]
             F32 => unr::f32_divide(h, sz3),
-            _ => unr::divide(self.divide_mode, h, sz3),
+            #[cfg(feature = "divide-modes")]
+            BY_MODE => match self.divide_mode {
+                DivideMode::Unr => unr::unr_divide(h, sz3),
+                DivideMode::Exact => unr::exact_divide(h, sz3),
+                DivideMode::F32 => unr::f32_divide(h, sz3),
+            },
+            _ => unr::unr_divide(h, sz3),
         };
         if overflow {
             self.flag_bits |= bit::DIVIDE;
