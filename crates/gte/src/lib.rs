@@ -181,109 +181,116 @@ impl Gte {
     ///
     /// Returns the command's cycle count (docs/hardware/gte.md §1), or `None` for an undefined opcode.
     ///
-    /// The opcode dispatch and the short commands compile into the caller (an emulator's COP2
-    /// handler), the long ones (RTPS/RTPT, the lighting commands) stay calls.
+    /// The opcode dispatch, RTPS and the short commands compile into the caller (an
+    /// emulator's COP2 handler); the long ones (RTPT, the lighting commands) stay calls. Each
+    /// dispatch arm extracts the sf and lm bits it uses and writes FLAG itself.
     #[inline(always)]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let c = Command::new(command);
-        let (shift, lm) = (c.shift(), c.lm());
         self.flag_bits = 0;
         // One dispatch on bits 0-5 (the opcode table of `Opcode::from_bits`) runs the command
         // and yields its cycle count.
-        let op = match command & 0x3F {
+        match command & 0x3F {
             0x01 => {
-                self.rtps(shift, lm);
-                Opcode::Rtps
+                self.rtps(c.shift(), c.lm());
+                self.finish(Opcode::Rtps)
             }
             0x06 => {
                 self.nclip();
-                Opcode::Nclip
+                self.finish(Opcode::Nclip)
             }
             0x0C => {
-                self.op(shift, lm);
-                Opcode::Op
+                self.op(c.shift(), c.lm());
+                self.finish(Opcode::Op)
             }
             0x10 => {
-                self.dpcs(shift, lm);
-                Opcode::Dpcs
+                self.dpcs(c.shift(), c.lm());
+                self.finish(Opcode::Dpcs)
             }
             0x11 => {
-                self.intpl(shift, lm);
-                Opcode::Intpl
+                self.intpl(c.shift(), c.lm());
+                self.finish(Opcode::Intpl)
             }
             0x12 => {
-                self.mvmva(c, shift, lm);
-                Opcode::Mvmva
+                self.mvmva(c, c.shift(), c.lm());
+                self.finish(Opcode::Mvmva)
             }
             0x13 => {
-                self.ncds(shift, lm);
-                Opcode::Ncds
+                self.ncds(c.shift(), c.lm());
+                self.finish(Opcode::Ncds)
             }
             0x14 => {
-                self.cdp(shift, lm);
-                Opcode::Cdp
+                self.cdp(c.shift(), c.lm());
+                self.finish(Opcode::Cdp)
             }
             0x16 => {
-                self.ncdt(shift, lm);
-                Opcode::Ncdt
+                self.ncdt(c.shift(), c.lm());
+                self.finish(Opcode::Ncdt)
             }
             0x1B => {
-                self.nccs(shift, lm);
-                Opcode::Nccs
+                self.nccs(c.shift(), c.lm());
+                self.finish(Opcode::Nccs)
             }
             0x1C => {
-                self.cc(shift, lm);
-                Opcode::Cc
+                self.cc(c.shift(), c.lm());
+                self.finish(Opcode::Cc)
             }
             0x1E => {
-                self.ncs(shift, lm);
-                Opcode::Ncs
+                self.ncs(c.shift(), c.lm());
+                self.finish(Opcode::Ncs)
             }
             0x20 => {
-                self.nct(shift, lm);
-                Opcode::Nct
+                self.nct(c.shift(), c.lm());
+                self.finish(Opcode::Nct)
             }
             0x28 => {
-                self.sqr(shift, lm);
-                Opcode::Sqr
+                self.sqr(c.shift(), c.lm());
+                self.finish(Opcode::Sqr)
             }
             0x29 => {
-                self.dcpl(shift, lm);
-                Opcode::Dcpl
+                self.dcpl(c.shift(), c.lm());
+                self.finish(Opcode::Dcpl)
             }
             0x2A => {
-                self.dpct(shift, lm);
-                Opcode::Dpct
+                self.dpct(c.shift(), c.lm());
+                self.finish(Opcode::Dpct)
             }
             0x2D => {
                 self.avsz3();
-                Opcode::Avsz3
+                self.finish(Opcode::Avsz3)
             }
             0x2E => {
                 self.avsz4();
-                Opcode::Avsz4
+                self.finish(Opcode::Avsz4)
             }
             0x30 => {
-                self.rtpt(shift, lm);
-                Opcode::Rtpt
+                self.rtpt(c.shift(), c.lm());
+                self.finish(Opcode::Rtpt)
             }
             0x3D => {
-                self.gpf(shift, lm);
-                Opcode::Gpf
+                self.gpf(c.shift(), c.lm());
+                self.finish(Opcode::Gpf)
             }
             0x3E => {
-                self.gpl(shift, lm);
-                Opcode::Gpl
+                self.gpl(c.shift(), c.lm());
+                self.finish(Opcode::Gpl)
             }
             0x3F => {
-                self.ncct(shift, lm);
-                Opcode::Ncct
+                self.ncct(c.shift(), c.lm());
+                self.finish(Opcode::Ncct)
             }
             _ => {
                 self.regs.set_flag(Flag::EMPTY);
-                return None;
+                None
             }
-        };
+        }
+    }
+
+    /// The end of a command: FLAG from the bits its steps set, bit 31 from the error sources
+    /// (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm, so that the
+    /// compiler sees which bits the command can set.
+    #[inline(always)]
+    fn finish(&mut self, op: Opcode) -> Option<u32> {
         self.regs.set_flag(Flag::from_bits(self.flag_bits));
         Some(op.cycles())
     }
