@@ -153,11 +153,13 @@ impl Gte {
 
     #[inline(always)]
     fn normal_color_command<const COUNT: usize>(&mut self, shift: u32, lm: bool, how: Finish) {
-        if Lighting::read(&self.regs, shift, lm).plain() {
-            self.normal_color::<COUNT, true>(shift, lm, how);
-        } else {
-            self.normal_color::<COUNT, false>(shift, lm, how);
-        }
+        with_constant_sf_lm!(shift, lm, {
+            if Lighting::read(&self.regs, shift, lm).plain() {
+                self.normal_color::<COUNT, true>(shift, lm, how);
+            } else {
+                self.normal_color::<COUNT, false>(shift, lm, how);
+            }
+        })
     }
 
     /// NCS: light V0.
@@ -213,12 +215,12 @@ impl Gte {
 
     /// CC: IR = BK + LCM * IR, multiply by RGBC.
     pub(crate) fn cc(&mut self, shift: u32, lm: bool) {
-        self.color_color(shift, lm, Finish::Color);
+        with_constant_sf_lm!(shift, lm, self.color_color(shift, lm, Finish::Color))
     }
 
     /// CDP: IR = BK + LCM * IR, multiply by RGBC, depth-cue towards FC.
     pub(crate) fn cdp(&mut self, shift: u32, lm: bool) {
-        self.color_color(shift, lm, Finish::DepthCue);
+        with_constant_sf_lm!(shift, lm, self.color_color(shift, lm, Finish::DepthCue))
     }
 
     /// (Cn * IRn) << 4 with Cn the RGBC colour bytes and IRn the registers.

@@ -32,12 +32,13 @@ impl Gte {
         match self.divide_mode {
             DivideMode::Exact => self.rtpt_with::<EXACT>(shift, lm),
             DivideMode::F32 => self.rtpt_with::<F32>(shift, lm),
-            DivideMode::Unr => self.rtpt_with::<UNR>(shift, lm),
+            DivideMode::Unr => with_constant_sf_lm!(shift, lm, self.rtpt_with::<UNR>(shift, lm)),
         }
         #[cfg(not(feature = "divide-modes"))]
-        self.rtpt_with::<UNR>(shift, lm);
+        with_constant_sf_lm!(shift, lm, self.rtpt_with::<UNR>(shift, lm));
     }
 
+    #[inline(always)]
     fn rtpt_with<const MODE: u8>(&mut self, shift: u32, lm: bool) {
         self.project_vertex::<MODE>(0, shift, lm, false);
         self.project_vertex::<MODE>(1, shift, lm, false);
