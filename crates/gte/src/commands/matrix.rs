@@ -15,6 +15,11 @@ impl Gte {
     /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
     #[inline(always)]
     pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
+        with_constant_sf_lm!(shift, lm, self.mvmva_with(c, shift, lm));
+    }
+
+    #[inline(always)]
+    fn mvmva_with(&mut self, c: Command, shift: u32, lm: bool) {
         let m = match c.mx() {
             MatrixSel::Rotation => self.regs.rt_wide(),
             MatrixSel::Light => self.regs.llm_wide(),
