@@ -102,6 +102,7 @@ impl Gte {
                 DivideMode::Exact => unr::exact_divide(h, sz3),
                 DivideMode::F32 => unr::f32_divide(h, sz3),
             },
+            // UNR: the hardware's divide.
             _ => unr::unr_divide(h, sz3),
         };
         if overflow {
