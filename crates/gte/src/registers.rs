@@ -189,12 +189,40 @@ fn extend(value: u32, (mask, sign): (&[u32; 32], &[u32; 32]), r: usize) -> u32 {
 /// load, whatever the register number, with no dispatch on it. The exceptions are the
 /// registers with side effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG), tested by one bit mask.
 /// Commands read and write the fields through the typed accessors below.
+///
+/// It also keeps, for each add vector (TR, BK, FC), whether a sum starting from it can leave
+/// the 44-bit range ([`RegisterFile::tr_plain`] and the others), recomputed by every CTC2 of
+/// its words: a command then reads one bit instead of testing three words.
 #[derive(Clone, Default, PartialEq, Eq)]
 pub(crate) struct RegisterFile {
     /// r0-r31; r15, r28 and r29 are never stored (their reads are computed).
     data: [u32; 32],
     /// c0-c31.
     control: [u32; 32],
+    /// [`EDGE_TR`], [`EDGE_BK`], [`EDGE_FC`]: the add vectors whose sums are not plain
+    /// addition, as [`edge_bits`] computes them from `control`.
+    edge: u8,
+}
+
+/// TR << 12 leaves no room for three products in some row (docs/hardware/gte.md §4).
+const EDGE_TR: u8 = 1;
+/// BK << 12 leaves no room for three products in some row.
+const EDGE_BK: u8 = 2;
+/// FC << 12 leaves no room for one product in some row.
+const EDGE_FC: u8 = 4;
+/// Control registers whose CTC2 can change [`RegisterFile::edge`]: TR, BK, FC.
+const EDGE_SOURCES: u32 = 0b111 << 5 | 0b111 << 13 | 0b111 << 21;
+
+/// Which add vectors of `control` start sums that are not plain addition
+/// ([`crate::mac::is_plain_start`]): TR and BK with three products (RTPS/RTPT, MVMVA, the
+/// lighting commands' second step), FC with one (the depth cue's first step, MVMVA's cv = 2).
+fn edge_bits(control: &[u32; 32]) -> u8 {
+    let near = |base: usize, terms: usize, bit: u8| {
+        let plain = (base..base + 3)
+            .all(|r| crate::mac::is_plain_start((control[r] as i32 as i64) << 12, terms));
+        if plain { 0 } else { bit }
+    };
+    near(5, 3, EDGE_TR) | near(13, 3, EDGE_BK) | near(21, 1, EDGE_FC)
 }
 
 impl core::fmt::Debug for RegisterFile {
@@ -268,6 +296,27 @@ impl RegisterFile {
         } else {
             extend(value, (mask, sign), r)
         };
+        if EDGE_SOURCES >> r & 1 != 0 {
+            self.edge = edge_bits(&self.control);
+        }
+    }
+
+    /// Whether every row's sum from TR << 12 with three products is plain addition.
+    #[inline(always)]
+    pub(crate) fn tr_plain(&self) -> bool {
+        self.edge & EDGE_TR == 0
+    }
+
+    /// Whether every row's sum from BK << 12 with three products is plain addition.
+    #[inline(always)]
+    pub(crate) fn bk_plain(&self) -> bool {
+        self.edge & EDGE_BK == 0
+    }
+
+    /// Whether every row's sum from FC << 12 with one product is plain addition.
+    #[inline(always)]
+    pub(crate) fn fc_plain(&self) -> bool {
+        self.edge & EDGE_FC == 0
     }
 
     /// Vertex Vn (n = 0..2): X, Y, Z.
@@ -545,6 +594,7 @@ impl RegisterFile {
         c[29] = sext(r.zsf3);
         c[30] = sext(r.zsf4);
         c[FLAG] = Flag::from_bits(r.flag.bits()).bits();
+        f.edge = edge_bits(&f.control);
         f
     }
 }

@@ -28,7 +28,7 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn depth_cue_interpolate(&mut self, input: [i64; 3], shift: u32, lm: bool) {
         let fc = self.regs.fc().map(|f| (f as i64) << 12);
-        let plain = fc.iter().all(|&f| is_plain_start(f, 1));
+        let plain = self.regs.fc_plain();
         let ir0 = self.regs.ir(0) as i64;
         let last = interpolate(&mut self.flag_bits, input, fc, ir0, plain, shift, lm);
         self.step_result(last, &[], 0);

@@ -6,7 +6,7 @@
 
 use crate::Gte;
 use crate::commands::depth_cue::interpolate;
-use crate::mac::{Step, color_entry as color, is_plain_start, matrix_products, step};
+use crate::mac::{Step, color_entry as color, matrix_products, step};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command.
@@ -45,14 +45,6 @@ impl Lighting {
             shift,
             lm,
         }
-    }
-
-    /// Whether every sum from BK (three products) and from FC (one product) is plain
-    /// addition (docs/hardware/gte.md §4), for every vertex alike.
-    #[inline(always)]
-    fn plain(&self) -> bool {
-        self.bk.iter().all(|&b| is_plain_start(b, 3))
-            && self.fc.iter().all(|&f| is_plain_start(f, 1))
     }
 
     /// MACn = (start_n + row n of `m` * `v`) SAR sf, IRn by lm.
@@ -154,7 +146,9 @@ impl Gte {
     #[inline(always)]
     fn normal_color_command<const COUNT: usize>(&mut self, shift: u32, lm: bool, how: Finish) {
         with_constant_sf_lm!(shift, lm, {
-            if Lighting::read(&self.regs, shift, lm).plain() {
+            // Every sum from BK (three products) and from FC (one product) plain addition
+            // (docs/hardware/gte.md §4), for every vertex alike.
+            if self.regs.bk_plain() && self.regs.fc_plain() {
                 self.normal_color::<COUNT, true>(shift, lm, how);
             } else {
                 self.normal_color::<COUNT, false>(shift, lm, how);
@@ -197,7 +191,7 @@ impl Gte {
     fn color_color(&mut self, shift: u32, lm: bool, how: Finish) {
         let ir = self.ir_vector();
         let l = Lighting::read(&self.regs, shift, lm);
-        let plain = l.plain();
+        let plain = self.regs.bk_plain() && self.regs.fc_plain();
         let mut flags = 0;
         let lit = l.matrix_step(&mut flags, &l.lcm, ir, l.bk, plain);
         let last = if how == Finish::DepthCue {

@@ -3,7 +3,7 @@
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::mac::{is_plain_start, matrix_products, step};
+use crate::mac::{matrix_products, step};
 
 impl Gte {
     /// IR1-3 widened.
@@ -38,17 +38,16 @@ impl Gte {
             VectorSel::V2 => self.regs.v(2).map(i64::from),
             VectorSel::Ir => self.ir_vector(),
         };
-        let t = match c.cv() {
-            TranslationSel::Translation => self.regs.tr(),
-            TranslationSel::Background => self.regs.bk(),
+        let (t, plain) = match c.cv() {
+            TranslationSel::Translation => (self.regs.tr(), self.regs.tr_plain()),
+            TranslationSel::Background => (self.regs.bk(), self.regs.bk_plain()),
             TranslationSel::FarColor => {
                 self.mvmva_far_color_bug(&m, v, shift, lm);
                 return;
             }
-            TranslationSel::None => [0; 3],
+            TranslationSel::None => ([0; 3], true),
         };
         let start = t.map(|t| (t as i64) << 12);
-        let plain = start.iter().all(|&s| is_plain_start(s, 3));
         let mut flags = 0;
         let last = step(&mut flags, start, matrix_products(&m, v), plain, shift, lm);
         self.step_result(last, &[], flags);

@@ -2,7 +2,7 @@
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;
-use crate::mac::{bit, clamp};
+use crate::mac::{accumulate, bit, clamp};
 use crate::{Gte, unr};
 
 /// Divide selectors for the const parameter of the projection. RTPT chooses the mode once
@@ -57,10 +57,12 @@ impl Gte {
         let v = self.regs.v(index);
         let rt = self.regs.rt();
         let tr = self.regs.tr();
+        let plain = self.regs.tr_plain();
         let mut acc = [0i64; 3];
         for (row, acc) in acc.iter_mut().enumerate() {
             let m = rt[row];
-            *acc = self.accumulate(
+            *acc = accumulate(
+                &mut self.flag_bits,
                 row + 1,
                 (tr[row] as i64) << 12,
                 &[
@@ -68,6 +70,7 @@ impl Gte {
                     m[1] as i64 * v[1] as i64,
                     m[2] as i64 * v[2] as i64,
                 ],
+                plain,
             );
         }
         let mac1 = self.set_mac(1, acc[0], shift);
