@@ -87,6 +87,37 @@ impl Env {
 
 /// A right or bottom drawing-area corner: mostly past the left/top corner (0-63), sometimes
 /// before it, which leaves an empty area.
+/// `(x, y)` moved onto, or `d` pixels beside, one edge of the drawing area (`side`: left,
+/// right, top, bottom), where a span's clip starts to matter; unmoved for `None`.
+fn near_area_edge(env: &Env, (x, y): (i32, i32), snap: Option<(usize, i32)>) -> (i32, i32) {
+    let a = env.area;
+    match snap {
+        Some((side, d)) => {
+            let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
+            if side < 2 {
+                (edge - env.offset.0, y)
+            } else {
+                (x, edge - env.offset.1)
+            }
+        }
+        None => (x, y),
+    }
+}
+
+/// A GPU with no video timing events (zero-width horizontal range, vertical range past the
+/// last line), so that the next event is the end of drawing, in 480i drawing from field
+/// line `start` when `interlace` is given.
+fn gpu_without_video_events(interlace: Option<u32>) -> Gpu {
+    let mut g = Gpu::new();
+    g.gp1(0x0600_0000);
+    g.gp1(0x07FF_FFFF);
+    if let Some(start) = interlace {
+        g.gp1(0x0800_0025);
+        g.gp1(0x0500_0000 | start << 10);
+    }
+    g
+}
+
 fn corner() -> impl Strategy<Value = u32> {
     prop_oneof![6 => 64u32..512, 1 => 0u32..512]
 }
@@ -271,25 +302,10 @@ proptest! {
         env in env(),
     ) {
         let env = Env { mask: Mask { set: true, check: false }, ..env };
-        // Some vertices on or next to an edge of the drawing area (left, right, top,
-        // bottom), where a span's clip starts to matter.
-        let a = env.area;
-        let pts: Vec<(i32, i32)> = pts.iter().zip(&snap).map(|(&(x, y), s)| match *s {
-            Some((side, d)) => {
-                let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
-                if side < 2 { (edge - env.offset.0, y) } else { (x, edge - env.offset.1) }
-            }
-            None => (x, y),
-        }).collect();
-        let mut g = Gpu::new();
-        // No video timing events (zero-width horizontal range, vertical range past the last
-        // line): the next event is the end of drawing.
-        g.gp1(0x0600_0000);
-        g.gp1(0x07FF_FFFF);
-        if let Some(start) = interlace {
-            g.gp1(0x0800_0025);
-            g.gp1(0x0500_0000 | start << 10);
-        }
+        // Some vertices on or next to an edge of the drawing area.
+        let pts: Vec<(i32, i32)> =
+            pts.iter().zip(&snap).map(|(&p, &s)| near_area_edge(&env, p, s)).collect();
+        let mut g = gpu_without_video_events(interlace);
         g.gp0(0xE100_0000 | (env.dither as u32) << 9);
         g.gp0_words(&env.words());
         let mut words = vec![(0x20 | raw as u32) << 24 | rgb_word(rgb)];
@@ -327,21 +343,11 @@ proptest! {
         env in env(),
     ) {
         let env = Env { mask: Mask { set: true, check: false }, ..env };
-        let a = env.area;
-        let pts: Vec<(i32, i32, [u8; 3])> = pts.iter().zip(&snap).map(|(&(x, y, c), s)| match *s {
-            Some((side, d)) => {
-                let edge = [a.0 as i32, a.2 as i32 + 1, a.1 as i32, a.3 as i32 + 1][side] + d;
-                if side < 2 { (edge - env.offset.0, y, c) } else { (x, edge - env.offset.1, c) }
-            }
-            None => (x, y, c),
+        let pts: Vec<(i32, i32, [u8; 3])> = pts.iter().zip(&snap).map(|(&(x, y, c), &s)| {
+            let (x, y) = near_area_edge(&env, (x, y), s);
+            (x, y, c)
         }).collect();
-        let mut g = Gpu::new();
-        g.gp1(0x0600_0000);
-        g.gp1(0x07FF_FFFF);
-        if let Some(start) = interlace {
-            g.gp1(0x0800_0025);
-            g.gp1(0x0500_0000 | start << 10);
-        }
+        let mut g = gpu_without_video_events(interlace);
         g.gp0(0xE100_0000 | (env.dither as u32) << 9);
         g.gp0_words(&env.words());
         let mut words = vec![];
