@@ -7,6 +7,10 @@
 use gpu::{DmaError, Gpu, LINKED_LIST_WORD_BUDGET, ListEnd, dma_clear_ordering_table};
 use proptest::prelude::*;
 
+#[path = "support/quiet.rs"]
+mod quiet;
+use quiet::quiet;
+
 const MIB2: usize = 2 * 1024 * 1024;
 
 fn read(ram: &[u8], addr: u32) -> u32 {
@@ -28,16 +32,6 @@ fn units_to_gpu(units: f64) -> u32 {
 /// GPU cycles to CPU cycles, rounded up (7/11).
 fn gpu_to_cpu(gpu: u32) -> u32 {
     (gpu as f64 * 7.0 / 11.0 - 1e-9).ceil() as u32
-}
-
-/// A GPU whose video timing reports no events (a zero-width horizontal range is an endless
-/// hblank, a vertical range past the last line has no vblank edge; docs/hardware/timing.md
-/// §5, §6), so the next event is the drawing side's.
-fn quiet() -> Gpu {
-    let mut g = Gpu::new();
-    g.gp1(0x0600_0000);
-    g.gp1(0x07FF_FFFF);
-    g
 }
 
 // ---- DMA6 OTC: ps1-tests dma/otc-test ----

@@ -20,6 +20,8 @@ use proptest::prelude::*;
 mod model;
 #[path = "support/pixel.rs"]
 mod pixel;
+#[path = "support/quiet.rs"]
+mod quiet;
 
 use pixel::{Mask, Texture};
 
@@ -104,13 +106,10 @@ fn near_area_edge(env: &Env, (x, y): (i32, i32), snap: Option<(usize, i32)>) -> 
     }
 }
 
-/// A GPU with no video timing events (zero-width horizontal range, vertical range past the
-/// last line), so that the next event is the end of drawing, in 480i drawing from field
-/// line `start` when `interlace` is given.
+/// A GPU with no video timing events ([`quiet::quiet`]), so that the next event is the end of
+/// drawing, in 480i drawing from field line `start` when `interlace` is given.
 fn gpu_without_video_events(interlace: Option<u32>) -> Gpu {
-    let mut g = Gpu::new();
-    g.gp1(0x0600_0000);
-    g.gp1(0x07FF_FFFF);
+    let mut g = quiet::quiet();
     if let Some(start) = interlace {
         g.gp1(0x0800_0025);
         g.gp1(0x0500_0000 | start << 10);

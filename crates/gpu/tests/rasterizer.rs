@@ -531,6 +531,9 @@ fn textured_triangle_4bit_with_transparent_texel() {
 
 /// The per-pixel §3 triangle model, shared with `fast_paths.rs` (see the file for how it is
 /// derived from the fact sheet).
+#[path = "support/quiet.rs"]
+mod quiet;
+
 #[path = "support/model.rs"]
 mod model;
 
@@ -780,10 +783,8 @@ proptest! {
                 if side < 2 { e.0 = edge } else { e.1 = edge }
             }
         }
-        let mut g = Gpu::new();
         // No video timing events: the next event is the end of drawing.
-        g.gp1(0x0600_0000);
-        g.gp1(0x07FF_FFFF);
+        let mut g = quiet::quiet();
         g.gp0_words(&[
             0xE100_0000 | (dither as u32) << 9 | semi.unwrap_or(0) << 5,
             0xE300_0000 | area.0 | area.1 << 10,
