@@ -260,6 +260,13 @@ impl Command {
         self.0 & (1 << 10) != 0
     }
 
+    /// The MVMVA selector fields as numbers: mx (bits 17-18), v (bits 15-16), cv (bits 13-14).
+    #[inline(always)]
+    pub(crate) const fn mvmva_fields(self) -> (usize, usize, usize) {
+        let w = self.0 as usize;
+        ((w >> 17) & 3, (w >> 15) & 3, (w >> 13) & 3)
+    }
+
     /// MVMVA matrix.
     #[inline]
     pub const fn mx(self) -> MatrixSel {

@@ -75,14 +75,6 @@ pub struct Registers {
     pub flag: Flag,
 }
 
-const fn lo(value: u32) -> i16 {
-    value as u16 as i16
-}
-
-const fn hi(value: u32) -> i16 {
-    (value >> 16) as u16 as i16
-}
-
 const fn pack(low: i16, high: i16) -> u32 {
     (low as u16 as u32) | ((high as u16 as u32) << 16)
 }
@@ -184,24 +176,73 @@ fn extend(value: u32, (mask, sign): (&[u32; 32], &[u32; 32]), r: usize) -> u32 {
     ((value & mask[r]) ^ sign[r]).wrapping_sub(sign[r])
 }
 
-/// The register file as the engine keeps it: every register as the word MFC2/CFC2 reads
-/// (docs/hardware/gte.md §2), so that an MTC2/CTC2 is one masked store and an MFC2/CFC2 one
-/// load, whatever the register number, with no dispatch on it. The exceptions are the
-/// registers with side effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG), tested by one bit mask.
-/// Commands read and write the fields through the typed accessors below.
+/// The register file as the engine keeps it, one word per register, so that an MTC2/CTC2 is
+/// one store and an MFC2/CFC2 one load and one fixed extension, whatever the register number,
+/// with no dispatch on it (docs/hardware/gte.md §2). The exceptions are the registers with side
+/// effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG), tested by one bit mask. Control registers
+/// hold the word CFC2 reads. A 16-bit data register (VZ0-2, OTZ, IR0-3, SZ0-3) holds the
+/// word last written to it, of which the hardware keeps the low half: MFC2 extends that half
+/// as the register reads, and commands read only that half. Equality compares what the
+/// registers hold. Commands read and write the fields through the typed accessors below.
 ///
 /// It also keeps, for each add vector (TR, BK, FC), whether a sum starting from it can leave
 /// the 44-bit range ([`RegisterFile::tr_plain`] and the others), recomputed by every CTC2 of
 /// its words: a command then reads one bit instead of testing three words.
-#[derive(Clone, Default, PartialEq, Eq)]
+#[derive(Clone, Default)]
 pub(crate) struct RegisterFile {
     /// r0-r31; r15, r28 and r29 are never stored (their reads are computed).
-    data: [u32; 32],
+    data: Words,
     /// c0-c31.
-    control: [u32; 32],
+    control: Words,
     /// [`EDGE_TR`], [`EDGE_BK`], [`EDGE_FC`]: the add vectors whose sums are not plain
     /// addition, as [`edge_bits`] computes them from `control`.
     edge: u8,
+}
+
+/// 32 registers of 32 bits, each kept as its four bytes, low first: a word is one load or
+/// store, and a 16-bit field one narrow load, whatever other field shares its word.
+#[derive(Clone, Copy, Default)]
+#[repr(C, align(4))]
+struct Words([[u8; 4]; 32]);
+
+impl Words {
+    /// Register `r`'s word.
+    #[inline(always)]
+    fn word(&self, r: usize) -> u32 {
+        u32::from_le_bytes(self.0[r])
+    }
+
+    /// Set register `r`'s word.
+    #[inline(always)]
+    fn set(&mut self, r: usize, value: u32) {
+        self.0[r] = value.to_le_bytes();
+    }
+
+    /// Register `r`'s low half, signed.
+    #[inline(always)]
+    fn lo(&self, r: usize) -> i16 {
+        let [a, b, _, _] = self.0[r];
+        i16::from_le_bytes([a, b])
+    }
+
+    /// Register `r`'s low half, unsigned.
+    #[inline(always)]
+    fn lo_unsigned(&self, r: usize) -> u16 {
+        self.lo(r) as u16
+    }
+
+    /// Register `r`'s high half, signed.
+    #[inline(always)]
+    fn hi(&self, r: usize) -> i16 {
+        let [_, _, a, b] = self.0[r];
+        i16::from_le_bytes([a, b])
+    }
+
+    /// Copy register `from` into register `to`.
+    #[inline(always)]
+    fn copy(&mut self, to: usize, from: usize) {
+        self.0[to] = self.0[from];
+    }
 }
 
 /// TR << 12 leaves no room for three products in some row (docs/hardware/gte.md §4).
@@ -216,14 +257,22 @@ const EDGE_SOURCES: u32 = 0b111 << 5 | 0b111 << 13 | 0b111 << 21;
 /// Which add vectors of `control` start sums that are not plain addition
 /// ([`crate::mac::is_plain_start`]): TR and BK with three products (RTPS/RTPT, MVMVA, the
 /// lighting commands' second step), FC with one (the depth cue's first step, MVMVA's cv = 2).
-fn edge_bits(control: &[u32; 32]) -> u8 {
+fn edge_bits(control: &Words) -> u8 {
     let near = |base: usize, terms: usize, bit: u8| {
         let plain = (base..base + 3)
-            .all(|r| crate::mac::is_plain_start((control[r] as i32 as i64) << 12, terms));
+            .all(|r| crate::mac::is_plain_start((control.word(r) as i32 as i64) << 12, terms));
         if plain { 0 } else { bit }
     };
     near(5, 3, EDGE_TR) | near(13, 3, EDGE_BK) | near(21, 1, EDGE_FC)
 }
+
+impl PartialEq for RegisterFile {
+    fn eq(&self, other: &Self) -> bool {
+        self.snapshot() == other.snapshot()
+    }
+}
+
+impl Eq for RegisterFile {}
 
 impl core::fmt::Debug for RegisterFile {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
@@ -232,34 +281,36 @@ impl core::fmt::Debug for RegisterFile {
 }
 
 impl RegisterFile {
-    /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2).
+    /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2): a 16-bit register's
+    /// low half, sign- or zero-extended by the table.
     #[inline]
     pub(crate) fn read_data(&self, reg: u32) -> u32 {
         let r = (reg & 31) as usize;
         if DATA_READ_SPECIAL >> r & 1 != 0 {
             return self.read_data_special(r);
         }
-        self.data[r]
+        let (mask, sign) = &DATA_EXTENSION;
+        extend(self.data.word(r), (mask, sign), r)
     }
 
     fn read_data_special(&self, r: usize) -> u32 {
         match r {
             // SXYP reads as SXY2.
-            15 => self.data[14],
+            15 => self.data.word(14),
             // IRGB and ORGB read IR1-3 packed.
             _ => irgb([0, self.ir(1), self.ir(2), self.ir(3)]),
         }
     }
 
-    /// MTC2: write data register `reg & 31` (docs/hardware/gte.md §2).
+    /// MTC2: write data register `reg & 31` (docs/hardware/gte.md §2). The whole word is
+    /// stored; a 16-bit register's upper half is never read.
     #[inline]
     pub(crate) fn write_data(&mut self, reg: u32, value: u32) {
         let r = (reg & 31) as usize;
         if DATA_WRITE_SPECIAL >> r & 1 != 0 {
             return self.write_data_special(r, value);
         }
-        let (mask, sign) = &DATA_EXTENSION;
-        self.data[r] = extend(value, (mask, sign), r);
+        self.data.set(r, value);
     }
 
     fn write_data_special(&mut self, r: usize, value: u32) {
@@ -268,12 +319,12 @@ impl RegisterFile {
             // IRGB sets IR1-3 to each 5-bit field << 7.
             28 => {
                 for n in 1..=3 {
-                    self.data[8 + n] = ((value >> (5 * (n - 1))) & 0x1F) << 7;
+                    self.data.set(8 + n, ((value >> (5 * (n - 1))) & 0x1F) << 7);
                 }
             }
             30 => {
-                self.data[30] = value;
-                self.data[31] = leading_sign_bits(value);
+                self.data.set(30, value);
+                self.data.set(31, leading_sign_bits(value));
             }
             // ORGB (r29) and LZCR (r31) ignore writes.
             _ => {}
@@ -283,7 +334,7 @@ impl RegisterFile {
     /// CFC2: read control register `reg & 31` (docs/hardware/gte.md §2).
     #[inline]
     pub(crate) fn read_control(&self, reg: u32) -> u32 {
-        self.control[(reg & 31) as usize]
+        self.control.word((reg & 31) as usize)
     }
 
     /// CTC2: write control register `reg & 31` (docs/hardware/gte.md §2).
@@ -291,11 +342,12 @@ impl RegisterFile {
     pub(crate) fn write_control(&mut self, reg: u32, value: u32) {
         let r = (reg & 31) as usize;
         let (mask, sign) = &CONTROL_EXTENSION;
-        self.control[r] = if r == FLAG {
+        let stored = if r == FLAG {
             Flag::from_bits(value).bits()
         } else {
             extend(value, (mask, sign), r)
         };
+        self.control.set(r, stored);
         if EDGE_SOURCES >> r & 1 != 0 {
             self.edge = edge_bits(&self.control);
         }
@@ -322,99 +374,102 @@ impl RegisterFile {
     /// Vertex Vn (n = 0..2): X, Y, Z.
     #[inline(always)]
     pub(crate) fn v(&self, n: usize) -> [i16; 3] {
-        let xy = self.data[2 * n];
-        [lo(xy), hi(xy), lo(self.data[2 * n + 1])]
+        [
+            self.data.lo(2 * n),
+            self.data.hi(2 * n),
+            self.data.lo(2 * n + 1),
+        ]
     }
 
     /// RGBC (r6).
     #[inline(always)]
     pub(crate) fn rgbc(&self) -> u32 {
-        self.data[6]
+        self.data.word(6)
     }
 
     /// OTZ (r7).
     #[inline(always)]
     pub(crate) fn set_otz(&mut self, value: u16) {
-        self.data[7] = value as u32;
+        self.data.set(7, value as u32);
     }
 
     /// IRn (n = 0..3).
     #[inline(always)]
     pub(crate) fn ir(&self, n: usize) -> i16 {
-        lo(self.data[8 + n])
+        self.data.lo(8 + n)
     }
 
     /// Set IRn (n = 0..3).
     #[inline(always)]
     pub(crate) fn set_ir(&mut self, n: usize, value: i16) {
-        self.data[8 + n] = sext(value);
+        self.data.set(8 + n, sext(value));
     }
 
     /// Screen X and Y of SXYn (n = 0..2) as signed halves.
     #[inline(always)]
     pub(crate) fn sxy(&self, n: usize) -> (i16, i16) {
-        let v = self.data[12 + n];
-        (lo(v), hi(v))
+        (self.data.lo(12 + n), self.data.hi(12 + n))
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
     #[inline(always)]
     pub(crate) fn push_sxy(&mut self, value: u32) {
-        self.data[12] = self.data[13];
-        self.data[13] = self.data[14];
-        self.data[14] = value;
+        self.data.copy(12, 13);
+        self.data.copy(13, 14);
+        self.data.set(14, value);
     }
 
     /// SZn (n = 0..3).
     #[inline(always)]
     pub(crate) fn sz(&self, n: usize) -> u16 {
-        self.data[16 + n] as u16
+        self.data.lo_unsigned(16 + n)
     }
 
     /// Push a value onto the screen Z FIFO (SZ0 <- SZ1 <- SZ2 <- SZ3 <- value).
     #[inline(always)]
     pub(crate) fn push_sz(&mut self, value: u16) {
-        self.data[16] = self.data[17];
-        self.data[17] = self.data[18];
-        self.data[18] = self.data[19];
-        self.data[19] = value as u32;
+        self.data.copy(16, 17);
+        self.data.copy(17, 18);
+        self.data.copy(18, 19);
+        self.data.set(19, value as u32);
     }
 
     /// RGBn (n = 0..2).
     #[inline(always)]
     pub(crate) fn rgb(&self, n: usize) -> u32 {
-        self.data[20 + n]
+        self.data.word(20 + n)
     }
 
     /// Push a colour onto the colour FIFO (RGB0 <- RGB1 <- RGB2 <- value).
     #[inline(always)]
     pub(crate) fn push_rgb(&mut self, value: u32) {
-        self.data[20] = self.data[21];
-        self.data[21] = self.data[22];
-        self.data[22] = value;
+        self.data.copy(20, 21);
+        self.data.copy(21, 22);
+        self.data.set(22, value);
     }
 
     /// MACn (n = 0..3).
     #[inline(always)]
     pub(crate) fn mac(&self, n: usize) -> i32 {
-        self.data[24 + n] as i32
+        self.data.word(24 + n) as i32
     }
 
     /// Set MACn (n = 0..3).
     #[inline(always)]
     pub(crate) fn set_mac(&mut self, n: usize, value: i32) {
-        self.data[24 + n] = value as u32;
+        self.data.set(24 + n, value as u32);
     }
 
     /// The matrix stored in the five control registers from `base` (RT c0, LLM c8, LCM c16),
     /// row-major: 11 | 12 << 16, 13 | 21 << 16, 22 | 23 << 16, 31 | 32 << 16, 33.
     #[inline(always)]
     fn matrix(&self, base: usize) -> Matrix {
-        let c = |k: usize| self.control[base + k];
+        let lo = |k: usize| self.control.lo(base + k);
+        let hi = |k: usize| self.control.hi(base + k);
         [
-            [lo(c(0)), hi(c(0)), lo(c(1))],
-            [hi(c(1)), lo(c(2)), hi(c(2))],
-            [lo(c(3)), hi(c(3)), lo(c(4))],
+            [lo(0), hi(0), lo(1)],
+            [hi(1), lo(2), hi(2)],
+            [lo(3), hi(3), lo(4)],
         ]
     }
 
@@ -422,8 +477,8 @@ impl RegisterFile {
     /// sign-extended to 64 bits straight from its word (no 16-bit array in between).
     #[inline(always)]
     fn matrix_wide(&self, base: usize) -> [[i64; 3]; 3] {
-        let lo = |k: usize| self.control[base + k] as i16 as i64;
-        let hi = |k: usize| (self.control[base + k] as i32 >> 16) as i64;
+        let lo = |k: usize| self.control.lo(base + k) as i64;
+        let hi = |k: usize| self.control.hi(base + k) as i64;
         [
             [lo(0), hi(0), lo(1)],
             [hi(1), lo(2), hi(2)],
@@ -435,10 +490,26 @@ impl RegisterFile {
     #[inline(always)]
     fn vector(&self, base: usize) -> [i32; 3] {
         [
-            self.control[base] as i32,
-            self.control[base + 1] as i32,
-            self.control[base + 2] as i32,
+            self.control.word(base) as i32,
+            self.control.word(base + 1) as i32,
+            self.control.word(base + 2) as i32,
         ]
+    }
+
+    /// Stored matrix `n` (0 RT, 1 LLM, 2 LCM), widened.
+    #[inline(always)]
+    pub(crate) fn stored_matrix_wide(&self, n: usize) -> [[i64; 3]; 3] {
+        self.matrix_wide(8 * n)
+    }
+
+    /// Add vector `n` of MVMVA's cv (0 TR, 1 BK, 3 none; not 2, FC) and whether sums from it
+    /// are plain addition (as [`RegisterFile::tr_plain`]).
+    #[inline(always)]
+    pub(crate) fn add_vector(&self, n: usize) -> ([i32; 3], bool) {
+        let keep = if n == 3 { 0 } else { -1 };
+        let words = self.vector(5 + 8 * (n & 1)).map(|w| w & keep);
+        // EDGE_TR is bit 0 and EDGE_BK bit 1; no range bit is at 3 (none).
+        (words, self.edge >> n & 1 == 0)
     }
 
     /// Rotation matrix RT (c0-c4).
@@ -486,55 +557,55 @@ impl RegisterFile {
     /// Screen offsets OFX, OFY (c24, c25), 16.16.
     #[inline(always)]
     pub(crate) fn offset(&self) -> (i32, i32) {
-        (self.control[24] as i32, self.control[25] as i32)
+        (self.control.word(24) as i32, self.control.word(25) as i32)
     }
 
     /// Projection plane distance H (c26), unsigned in the maths.
     #[inline(always)]
     pub(crate) fn h(&self) -> u16 {
-        self.control[26] as u16
+        self.control.lo_unsigned(26)
     }
 
     /// Depth-cue coefficient DQA (c27) and offset DQB (c28).
     #[inline(always)]
     pub(crate) fn depth_cue(&self) -> (i16, i32) {
-        (lo(self.control[27]), self.control[28] as i32)
+        (self.control.lo(27), self.control.word(28) as i32)
     }
 
     /// AVSZ3 and AVSZ4 scales ZSF3, ZSF4 (c29, c30).
     #[inline(always)]
     pub(crate) fn zsf(&self) -> (i16, i16) {
-        (lo(self.control[29]), lo(self.control[30]))
+        (self.control.lo(29), self.control.lo(30))
     }
 
     /// FLAG (c31).
     #[inline(always)]
     pub(crate) fn flag(&self) -> Flag {
-        Flag::from_bits(self.control[FLAG])
+        Flag::from_bits(self.control.word(FLAG))
     }
 
     /// Set FLAG (c31).
     #[inline(always)]
     pub(crate) fn set_flag(&mut self, flag: Flag) {
-        self.control[FLAG] = flag.bits();
+        self.control.set(FLAG, flag.bits());
     }
 
     /// The registers as stored, field by field.
     pub(crate) fn snapshot(&self) -> Registers {
-        let d = &self.data;
+        let d = |r| self.data.word(r);
         let matrix = |base| self.matrix(base);
         Registers {
             v: [self.v(0), self.v(1), self.v(2)],
-            rgbc: d[6],
-            otz: d[7] as u16,
+            rgbc: d(6),
+            otz: d(7) as u16,
             ir: [self.ir(0), self.ir(1), self.ir(2), self.ir(3)],
-            sxy: [d[12], d[13], d[14]],
+            sxy: [d(12), d(13), d(14)],
             sz: [self.sz(0), self.sz(1), self.sz(2), self.sz(3)],
-            rgb: [d[20], d[21], d[22]],
-            res1: d[23],
+            rgb: [d(20), d(21), d(22)],
+            res1: d(23),
             mac: [self.mac(0), self.mac(1), self.mac(2), self.mac(3)],
-            lzcs: d[30],
-            lzcr: d[31],
+            lzcs: d(30),
+            lzcr: d(31),
             rt: matrix(0),
             tr: self.tr(),
             llm: matrix(8),
@@ -558,42 +629,42 @@ impl RegisterFile {
         let mut f = RegisterFile::default();
         let d = &mut f.data;
         for n in 0..3 {
-            d[2 * n] = pack(r.v[n][0], r.v[n][1]);
-            d[2 * n + 1] = sext(r.v[n][2]);
-            d[12 + n] = r.sxy[n];
-            d[20 + n] = r.rgb[n];
+            d.set(2 * n, pack(r.v[n][0], r.v[n][1]));
+            d.set(2 * n + 1, sext(r.v[n][2]));
+            d.set(12 + n, r.sxy[n]);
+            d.set(20 + n, r.rgb[n]);
         }
-        d[6] = r.rgbc;
-        d[7] = r.otz as u32;
+        d.set(6, r.rgbc);
+        d.set(7, r.otz as u32);
         for n in 0..4 {
-            d[8 + n] = sext(r.ir[n]);
-            d[16 + n] = r.sz[n] as u32;
-            d[24 + n] = r.mac[n] as u32;
+            d.set(8 + n, sext(r.ir[n]));
+            d.set(16 + n, r.sz[n] as u32);
+            d.set(24 + n, r.mac[n] as u32);
         }
-        d[23] = r.res1;
-        d[30] = r.lzcs;
-        d[31] = r.lzcr;
+        d.set(23, r.res1);
+        d.set(30, r.lzcs);
+        d.set(31, r.lzcr);
         let c = &mut f.control;
         for (base, m) in [(0, &r.rt), (8, &r.llm), (16, &r.lcm)] {
-            c[base] = pack(m[0][0], m[0][1]);
-            c[base + 1] = pack(m[0][2], m[1][0]);
-            c[base + 2] = pack(m[1][1], m[1][2]);
-            c[base + 3] = pack(m[2][0], m[2][1]);
-            c[base + 4] = sext(m[2][2]);
+            c.set(base, pack(m[0][0], m[0][1]));
+            c.set(base + 1, pack(m[0][2], m[1][0]));
+            c.set(base + 2, pack(m[1][1], m[1][2]));
+            c.set(base + 3, pack(m[2][0], m[2][1]));
+            c.set(base + 4, sext(m[2][2]));
         }
         for (base, v) in [(5, &r.tr), (13, &r.bk), (21, &r.fc)] {
-            for n in 0..3 {
-                c[base + n] = v[n] as u32;
+            for (n, &value) in v.iter().enumerate() {
+                c.set(base + n, value as u32);
             }
         }
-        c[24] = r.ofx as u32;
-        c[25] = r.ofy as u32;
-        c[26] = sext(r.h as i16);
-        c[27] = sext(r.dqa);
-        c[28] = r.dqb as u32;
-        c[29] = sext(r.zsf3);
-        c[30] = sext(r.zsf4);
-        c[FLAG] = Flag::from_bits(r.flag.bits()).bits();
+        c.set(24, r.ofx as u32);
+        c.set(25, r.ofy as u32);
+        c.set(26, sext(r.h as i16));
+        c.set(27, sext(r.dqa));
+        c.set(28, r.dqb as u32);
+        c.set(29, sext(r.zsf3));
+        c.set(30, sext(r.zsf4));
+        c.set(FLAG, Flag::from_bits(r.flag.bits()).bits());
         f.edge = edge_bits(&f.control);
         f
     }

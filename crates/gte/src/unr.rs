@@ -46,21 +46,37 @@ pub const fn unr_divide(h: u16, sz3: u16) -> (u32, bool) {
     if divide_overflows(h, sz3) {
         return (QUOTIENT_MAX, true);
     }
+    (unr_quotient(h, sz3), false)
+}
+
+/// The reciprocal seeds `T[i] + 101h` of the table, as the refinement uses them.
+const UNR_SEEDS: [u16; 257] = {
+    let mut seeds = [0u16; 257];
+    let mut i = 0;
+    while i < 257 {
+        seeds[i] = UNR_TABLE[i] as u16 + 0x101;
+        i += 1;
+    }
+    seeds
+};
+
+/// The UNR quotient for a divide that does not overflow (`H < 2 * SZ3`).
+#[inline(always)]
+pub(crate) const fn unr_quotient(h: u16, sz3: u16) -> u32 {
     // sz3 > h / 2 >= 0, so sz3 != 0 and the shift count is 0..=15.
     let shift = sz3.leading_zeros();
     let n = (h as u64) << shift;
     let d = (sz3 as i64) << shift; // 8000h..=FFFFh
     let index = ((d - 0x7FC0) >> 7) as usize; // 0..=256
-    let u = UNR_TABLE[index] as i64 + 0x101;
+    let u = UNR_SEEDS[index] as i64;
     let d = (0x200_0080 - d * u) >> 8;
     let d = (0x80 + d * u) >> 8;
     let q = (n as i64 * d + 0x8000) >> 16;
-    let q = if q > QUOTIENT_MAX as i64 {
+    if q > QUOTIENT_MAX as i64 {
         QUOTIENT_MAX
     } else {
         q as u32
-    };
-    (q, false)
+    }
 }
 
 /// `round(H * 10000h / SZ3)` with the hardware overflow rule and clamp: the exact quotient the
@@ -69,14 +85,19 @@ pub const fn exact_divide(h: u16, sz3: u16) -> (u32, bool) {
     if divide_overflows(h, sz3) {
         return (QUOTIENT_MAX, true);
     }
+    (exact_quotient(h, sz3), false)
+}
+
+/// The exact quotient for a divide that does not overflow.
+#[inline(always)]
+pub(crate) const fn exact_quotient(h: u16, sz3: u16) -> u32 {
     let sz3 = sz3 as u64;
     let q = (((h as u64) << 16) + sz3 / 2) / sz3;
-    let q = if q > QUOTIENT_MAX as u64 {
+    if q > QUOTIENT_MAX as u64 {
         QUOTIENT_MAX
     } else {
         q as u32
-    };
-    (q, false)
+    }
 }
 
 /// The quotient in `f32` maths (rounded to nearest), with the hardware overflow rule and clamp.
@@ -84,10 +105,15 @@ pub fn f32_divide(h: u16, sz3: u16) -> (u32, bool) {
     if divide_overflows(h, sz3) {
         return (QUOTIENT_MAX, true);
     }
+    (f32_quotient(h, sz3), false)
+}
+
+/// The `f32` quotient for a divide that does not overflow.
+#[inline(always)]
+pub(crate) fn f32_quotient(h: u16, sz3: u16) -> u32 {
     let q = (h as f32) * 65536.0 / (sz3 as f32) + 0.5;
     // `as` saturates; q is positive and finite because sz3 > 0.
-    let q = (q as u32).min(QUOTIENT_MAX);
-    (q, false)
+    (q as u32).min(QUOTIENT_MAX)
 }
 
 /// `H * 10000h / SZ3` by the given mode: the quotient and whether the divide overflowed.

@@ -20,6 +20,19 @@ impl Gte {
 
     #[inline(always)]
     fn mvmva_with(&mut self, c: Command, shift: u32, lm: bool) {
+        // A stored matrix, V0-2 and TR, BK or none: operands read at offsets from the
+        // selector fields, without a dispatch on each.
+        let (mx, v, cv) = c.mvmva_fields();
+        if mx != 3 && v != 3 && cv != 2 {
+            let m = self.regs.stored_matrix_wide(mx);
+            let v = self.regs.v(v).map(i64::from);
+            let (t, plain) = self.regs.add_vector(cv);
+            let start = t.map(|t| (t as i64) << 12);
+            let mut flags = 0;
+            let last = step(&mut flags, start, matrix_products(&m, v), plain, shift, lm);
+            self.step_result(last, &[], flags);
+            return;
+        }
         let m = match c.mx() {
             MatrixSel::Rotation => self.regs.rt_wide(),
             MatrixSel::Light => self.regs.llm_wide(),

@@ -16,6 +16,17 @@ const F32: u8 = 2;
 #[cfg(feature = "divide-modes")]
 const BY_MODE: u8 = 3;
 
+/// The quotient of a non-hardware divide mode, out of the hardware path's way.
+#[cfg(feature = "divide-modes")]
+#[cold]
+#[inline(never)]
+fn knob_quotient(mode: DivideMode, h: u16, sz3: u16) -> u32 {
+    match mode {
+        DivideMode::F32 => unr::f32_quotient(h, sz3),
+        _ => unr::exact_quotient(h, sz3),
+    }
+}
+
 impl Gte {
     /// RTPS: project V0; depth cue from it.
     #[inline(always)]
@@ -94,23 +105,24 @@ impl Gte {
         self.regs.push_sz(sz3 as u16);
         // Divide (step 5).
         let (h, sz3) = (self.regs.h(), sz3 as u16);
-        let (q, overflow) = match MODE {
-            #[cfg(feature = "divide-modes")]
-            EXACT => unr::exact_divide(h, sz3),
-            #[cfg(feature = "divide-modes")]
-            F32 => unr::f32_divide(h, sz3),
-            #[cfg(feature = "divide-modes")]
-            BY_MODE => match self.divide_mode {
-                DivideMode::Unr => unr::unr_divide(h, sz3),
-                DivideMode::Exact => unr::exact_divide(h, sz3),
-                DivideMode::F32 => unr::f32_divide(h, sz3),
-            },
-            // UNR: the hardware's divide.
-            _ => unr::unr_divide(h, sz3),
-        };
-        if overflow {
+        let q = if unr::divide_overflows(h, sz3) {
             self.flag_bits |= bit::DIVIDE;
-        }
+            unr::QUOTIENT_MAX
+        } else {
+            match MODE {
+                #[cfg(feature = "divide-modes")]
+                EXACT => unr::exact_quotient(h, sz3),
+                #[cfg(feature = "divide-modes")]
+                F32 => unr::f32_quotient(h, sz3),
+                #[cfg(feature = "divide-modes")]
+                BY_MODE => match self.divide_mode {
+                    DivideMode::Unr => unr::unr_quotient(h, sz3),
+                    mode => knob_quotient(mode, h, sz3),
+                },
+                // UNR: the hardware's divide.
+                _ => unr::unr_quotient(h, sz3),
+            }
+        };
         let q = q as i64;
         // Screen position from the untruncated 64-bit value (step 6).
         let (ofx, ofy) = self.regs.offset();
