@@ -122,12 +122,44 @@ pub(crate) fn step<const TERMS: usize>(
     shift: u32,
     lm: bool,
 ) -> Step {
+    // `plain` tested once for the three rows.
+    if plain {
+        step_rows::<TERMS, true>(flags, start, products, shift, lm)
+    } else {
+        step_rows::<TERMS, false>(flags, start, products, shift, lm)
+    }
+}
+
+#[inline(always)]
+fn step_rows<const TERMS: usize, const PLAIN: bool>(
+    flags: &mut u32,
+    start: [i64; 3],
+    products: [[i64; TERMS]; 3],
+    shift: u32,
+    lm: bool,
+) -> Step {
     let mut step = Step::default();
     for n in 0..3 {
-        let sum = accumulate(flags, n + 1, start[n], &products[n], plain);
+        let sum = accumulate(flags, n + 1, start[n], &products[n], PLAIN);
         (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
     }
     step
+}
+
+/// The three rows' accumulations of one step, as [`accumulate`]: `plain` is tested once for
+/// the three rows.
+#[inline(always)]
+pub(crate) fn row_sums<const TERMS: usize>(
+    flags: &mut u32,
+    start: [i64; 3],
+    products: &[[i64; TERMS]; 3],
+    plain: bool,
+) -> [i64; 3] {
+    if plain {
+        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], true))
+    } else {
+        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], false))
+    }
 }
 
 /// The products of each row of `m` with `v`, in column order (the terms of a matrix row's

@@ -2,7 +2,7 @@
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;
-use crate::mac::{accumulate, bit, clamp};
+use crate::mac::{bit, clamp, row_sums};
 use crate::{Gte, unr};
 
 /// Divide selectors for the const parameter of the projection. RTPT chooses the mode once
@@ -69,21 +69,15 @@ impl Gte {
         let rt = self.regs.rt();
         let tr = self.regs.tr();
         let plain = self.regs.tr_plain();
-        let mut acc = [0i64; 3];
-        for (row, acc) in acc.iter_mut().enumerate() {
-            let m = rt[row];
-            *acc = accumulate(
-                &mut self.flag_bits,
-                row + 1,
-                (tr[row] as i64) << 12,
-                &[
-                    m[0] as i64 * v[0] as i64,
-                    m[1] as i64 * v[1] as i64,
-                    m[2] as i64 * v[2] as i64,
-                ],
-                plain,
-            );
-        }
+        let start = tr.map(|t| (t as i64) << 12);
+        let products = rt.map(|m| {
+            [
+                m[0] as i64 * v[0] as i64,
+                m[1] as i64 * v[1] as i64,
+                m[2] as i64 * v[2] as i64,
+            ]
+        });
+        let acc = row_sums(&mut self.flag_bits, start, &products, plain);
         let mac1 = self.set_mac(1, acc[0], shift);
         let mac2 = self.set_mac(2, acc[1], shift);
         let mac3 = self.set_mac(3, acc[2], shift);
