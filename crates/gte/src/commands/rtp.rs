@@ -32,9 +32,15 @@ impl Gte {
     #[inline(always)]
     pub(crate) fn rtps(&mut self, shift: u32, lm: bool) {
         #[cfg(feature = "divide-modes")]
-        self.project_vertex::<BY_MODE>(0, shift, lm, true);
+        const MODE: u8 = BY_MODE;
         #[cfg(not(feature = "divide-modes"))]
-        self.project_vertex::<UNR>(0, shift, lm, true);
+        const MODE: u8 = UNR;
+        // One copy per sf: the MAC shifts are then by a constant.
+        if shift == 0 {
+            self.project_vertex::<MODE>(0, 0, lm, true);
+        } else {
+            self.project_vertex::<MODE>(0, 12, lm, true);
+        }
     }
 
     /// RTPT: project V0, V1, V2 in order; depth cue from the last only.
@@ -142,7 +148,8 @@ impl Gte {
             // A select, not a branch: whether IR0 saturates depends on the depth.
             let v = d >> 12;
             let ir0 = v.clamp(0, 0x1000);
-            self.flag_bits |= ((ir0 != v) as u32).wrapping_neg() & bit::IR0;
+            // Outside 0..=1000h is one unsigned compare.
+            self.flag_bits |= (v as u64 > 0x1000) as u32 * bit::IR0;
             self.regs.set_ir(0, ir0 as i16);
         }
     }
