@@ -221,8 +221,7 @@ impl Words {
     /// Register `r`'s low half, signed.
     #[inline(always)]
     fn lo(&self, r: usize) -> i16 {
-        let [a, b, _, _] = self.0[r];
-        i16::from_le_bytes([a, b])
+        self.word(r) as i16
     }
 
     /// Register `r`'s low half, unsigned.

@@ -44,7 +44,7 @@ impl Gte {
     }
 
     /// DPCS: depth-cue the RGBC colour.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn dpcs(&mut self, shift: u32, lm: bool) {
         let input = Self::color_input(self.regs.rgbc());
         self.depth_cue_interpolate(input, shift, lm);
@@ -77,7 +77,7 @@ impl Gte {
     }
 
     /// GPF: MACn = (IRn * IR0) SAR sf.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn gpf(&mut self, shift: u32, lm: bool) {
         self.general_interpolate([0; 3], shift, lm);
     }

@@ -6,7 +6,7 @@ use crate::mac::{bit, clamp};
 
 impl Gte {
     /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md §7).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn nclip(&mut self) {
         let (x0, y0) = self.regs.sxy(0);
         let (x1, y1) = self.regs.sxy(1);
@@ -20,7 +20,7 @@ impl Gte {
     }
 
     /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn avsz3(&mut self) {
         let sz = |n| self.regs.sz(n) as i64;
         let sum = sz(1) + sz(2) + sz(3);
@@ -28,7 +28,7 @@ impl Gte {
     }
 
     /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn avsz4(&mut self) {
         let sz = |n| self.regs.sz(n) as i64;
         let sum = sz(0) + sz(1) + sz(2) + sz(3);
