@@ -200,7 +200,9 @@ pub(crate) struct RegisterFile {
 }
 
 /// 32 registers of 32 bits, each kept as its four bytes, low first: a word is one load or
-/// store, and a 16-bit field one narrow load, whatever other field shares its word.
+/// store, and each 16-bit half can be loaded on its own (the high half from its two bytes),
+/// so that reading both halves of a word (a matrix row, a vertex's X and Y) takes two narrow
+/// loads and no shifts.
 #[derive(Clone, Copy, Default)]
 #[repr(C, align(4))]
 struct Words([[u8; 4]; 32]);
