@@ -3,7 +3,7 @@
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::mac::{matrix_products, step};
+use crate::mac::{Step, mac_ir, matrix_products, row_sums, step};
 
 impl Gte {
     /// IR1-3 widened.
@@ -29,7 +29,12 @@ impl Gte {
             let (t, plain) = self.regs.add_vector(cv);
             let start = t.map(|t| (t as i64) << 12);
             let mut flags = 0;
-            let last = step(&mut flags, start, matrix_products(&m, v), plain, shift, lm);
+            // The three sums first, then their MAC/IR: fewer values live at once.
+            let sums = row_sums(&mut flags, start, &matrix_products(&m, v), plain);
+            let mut last = Step::default();
+            for (n, &sum) in sums.iter().enumerate() {
+                (last.mac[n], last.ir[n]) = mac_ir(&mut flags, n + 1, sum, shift, lm);
+            }
             self.step_result(last, &[], flags);
             return;
         }
