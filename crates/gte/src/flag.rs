@@ -80,6 +80,14 @@ impl Flag {
         Flag(kept | ((kept & Self::ERROR_SOURCES != 0) as u32) << 31)
     }
 
+    /// FLAG after a command, from the bits its steps set (all within bits 12-30): bit 31 from
+    /// the error sources (docs/hardware/gte.md §3).
+    #[inline(always)]
+    pub(crate) const fn from_command_bits(bits: u32) -> Flag {
+        debug_assert!(bits & !Self::WRITABLE == 0);
+        Flag(bits | ((bits & Self::ERROR_SOURCES != 0) as u32) << 31)
+    }
+
     /// The raw register value.
     pub const fn bits(self) -> u32 {
         self.0

@@ -291,7 +291,7 @@ impl Gte {
     /// compiler sees which bits the command can set.
     #[inline(always)]
     fn finish(&mut self, op: Opcode) -> Option<u32> {
-        self.regs.set_flag(Flag::from_bits(self.flag_bits));
+        self.regs.set_flag(Flag::from_command_bits(self.flag_bits));
         Some(op.cycles())
     }
 }
