@@ -3,7 +3,7 @@
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::mac::{Step, mac_ir, matrix_products, row_sums, step};
+use crate::mac::{Step, mac_ir, matrix_products, row_sums};
 
 impl Gte {
     /// IR1-3 widened.
@@ -27,15 +27,7 @@ impl Gte {
             let m = self.regs.stored_matrix_wide(mx);
             let v = self.regs.v(v).map(i64::from);
             let (t, plain) = self.regs.add_vector(cv);
-            let start = t.map(|t| (t as i64) << 12);
-            let mut flags = 0;
-            // The three sums first, then their MAC/IR: fewer values live at once.
-            let sums = row_sums(&mut flags, start, &matrix_products(&m, v), plain);
-            let mut last = Step::default();
-            for (n, &sum) in sums.iter().enumerate() {
-                (last.mac[n], last.ir[n]) = mac_ir(&mut flags, n + 1, sum, shift, lm);
-            }
-            self.step_result(last, &[], flags);
+            self.multiply_add(&m, v, t, plain, shift, lm);
             return;
         }
         let m = match c.mx() {
@@ -65,9 +57,29 @@ impl Gte {
             }
             TranslationSel::None => ([0; 3], true),
         };
+        self.multiply_add(&m, v, t, plain, shift, lm);
+    }
+
+    /// MAC1-3 and IR1-3 = (t << 12 + m * v) SAR sf, IR by lm (docs/hardware/gte.md §4);
+    /// `plain` as for [`crate::mac::accumulate`].
+    #[inline(always)]
+    fn multiply_add(
+        &mut self,
+        m: &[[i64; 3]; 3],
+        v: [i64; 3],
+        t: [i32; 3],
+        plain: bool,
+        shift: u32,
+        lm: bool,
+    ) {
         let start = t.map(|t| (t as i64) << 12);
         let mut flags = 0;
-        let last = step(&mut flags, start, matrix_products(&m, v), plain, shift, lm);
+        // The three sums first, then their MAC/IR: fewer values live at once.
+        let sums = row_sums(&mut flags, start, &matrix_products(m, v), plain);
+        let mut last = Step::default();
+        for (n, &sum) in sums.iter().enumerate() {
+            (last.mac[n], last.ir[n]) = mac_ir(&mut flags, n + 1, sum, shift, lm);
+        }
         self.step_result(last, &[], flags);
     }
 
