@@ -286,8 +286,8 @@ impl Gte {
         }
     }
 
-    /// The end of a command: FLAG from the bits its steps set, bit 31 from the error sources
-    /// (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm, so that the
+    /// The end of a command: FLAG is the bits its steps set, an error source having brought
+    /// bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm, so that the
     /// compiler sees which bits the command can set.
     #[inline(always)]
     fn finish(&mut self, op: Opcode) -> Option<u32> {

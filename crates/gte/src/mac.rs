@@ -169,38 +169,52 @@ pub(crate) fn matrix_products(m: &[[i64; 3]; 3], v: [i64; 3]) -> [[i64; 3]; 3] {
     m.map(|r| [r[0] * v[0], r[1] * v[1], r[2] * v[2]])
 }
 
-/// Bits of the FLAG register, by position (docs/hardware/gte.md §3).
+/// What a command ORs into FLAG for each condition, by bit position (docs/hardware/gte.md
+/// §3). A condition that feeds the error summary carries bit 31 with it, so the bits a
+/// command collects are FLAG as the command leaves it.
 pub mod bit {
-    /// MACn > 2^43 - 1: bit 31 - n.
+    use crate::Flag;
+
+    /// `b` with bit 31 when `b` is among the error sources (docs/hardware/gte.md §3).
+    const fn raise(b: u32) -> u32 {
+        if b & Flag::ERROR_SOURCES != 0 {
+            b | 1 << 31
+        } else {
+            b
+        }
+    }
+
+    /// MACn > 2^43 - 1: bit 31 - n (an error source).
     pub const fn mac_positive(n: usize) -> u32 {
-        1 << (31 - n)
+        raise(1 << (31 - n))
     }
-    /// MACn < -2^43: bit 28 - n.
+    /// MACn < -2^43: bit 28 - n (an error source).
     pub const fn mac_negative(n: usize) -> u32 {
-        1 << (28 - n)
+        raise(1 << (28 - n))
     }
-    /// IRn saturated: bit 25 - n.
+    /// IRn saturated: bit 25 - n (IR1 and IR2 are error sources, IR3 is not).
     pub const fn ir(n: usize) -> u32 {
-        1 << (25 - n)
+        const IR: [u32; 4] = [0, raise(1 << 24), raise(1 << 23), raise(1 << 22)];
+        IR[n]
     }
-    /// Colour channel n (1 = R) saturated: bit 22 - n.
+    /// Colour channel n (1 = R) saturated: bit 22 - n (not an error source).
     pub const fn color(n: usize) -> u32 {
-        1 << (22 - n)
+        raise(1 << (22 - n))
     }
     /// SZ3 / OTZ saturated.
-    pub const SZ3_OTZ: u32 = 1 << 18;
+    pub const SZ3_OTZ: u32 = raise(1 << 18);
     /// Divide overflow.
-    pub const DIVIDE: u32 = 1 << 17;
+    pub const DIVIDE: u32 = raise(1 << 17);
     /// MAC0 > 2^31 - 1.
-    pub const MAC0_POSITIVE: u32 = 1 << 16;
+    pub const MAC0_POSITIVE: u32 = raise(1 << 16);
     /// MAC0 < -2^31.
-    pub const MAC0_NEGATIVE: u32 = 1 << 15;
+    pub const MAC0_NEGATIVE: u32 = raise(1 << 15);
     /// SX2 saturated.
-    pub const SX2: u32 = 1 << 14;
+    pub const SX2: u32 = raise(1 << 14);
     /// SY2 saturated.
-    pub const SY2: u32 = 1 << 13;
-    /// IR0 saturated.
-    pub const IR0: u32 = 1 << 12;
+    pub const SY2: u32 = raise(1 << 13);
+    /// IR0 saturated (not an error source).
+    pub const IR0: u32 = raise(1 << 12);
 }
 
 impl Gte {

@@ -582,7 +582,7 @@ impl RegisterFile {
     /// FLAG (c31).
     #[inline(always)]
     pub(crate) fn flag(&self) -> Flag {
-        Flag::from_bits(self.control.word(FLAG))
+        Flag::from_register(self.control.word(FLAG))
     }
 
     /// Set FLAG (c31).

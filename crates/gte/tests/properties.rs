@@ -27,6 +27,11 @@ fn translation() -> impl Strategy<Value = i32> {
     ]
 }
 
+/// FLAG bit 31 is the OR of bits 30-23 and 18-13 (docs/hardware/gte.md §3).
+fn summary_follows_sources(flag: Flag) -> bool {
+    (flag.bits() >> 31 == 1) == (flag.bits() & 0x7F87_E000 != 0)
+}
+
 fn packed(lo: i16, hi: i16) -> u32 {
     (lo as u16 as u32) | ((hi as u16 as u32) << 16)
 }
@@ -253,6 +258,7 @@ proptest! {
             prop_assert_eq!(flag.contains(bits[row]), out);
             prop_assert_eq!(gte.read_data((9 + row) as u32) as i32 as i128, dot.clamp(min, 0x7FFF));
         }
+        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
     }
 
     /// MAC0 flags and value: NCLIP of arbitrary screen XY values.
@@ -269,6 +275,7 @@ proptest! {
         prop_assert_eq!(flag.contains(Flag::MAC0_POSITIVE_OVERFLOW), area > i32::MAX as i128);
         prop_assert_eq!(flag.contains(Flag::MAC0_NEGATIVE_OVERFLOW), area < i32::MIN as i128);
         prop_assert_eq!(gte.read_data(24), area as u32);
+        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
     }
 
     /// SZ3/OTZ saturation: AVSZ3 and AVSZ4 with arbitrary ZSF and SZ values.
@@ -288,6 +295,7 @@ proptest! {
         prop_assert_eq!(gte.read_data(24), s as u32);
         prop_assert_eq!(gte.flag().contains(Flag::MAC0_POSITIVE_OVERFLOW), s > i32::MAX as i128);
         prop_assert_eq!(gte.flag().contains(Flag::MAC0_NEGATIVE_OVERFLOW), s < i32::MIN as i128);
+        prop_assert!(summary_follows_sources(gte.flag()), "{:08X}", gte.flag().bits());
     }
 
     /// Colour FIFO saturation: GPF, Cn = (IRn * IR0 >> shift) >> 4 clamped to 0..FFh.
@@ -308,6 +316,7 @@ proptest! {
             prop_assert_eq!(gte.flag().contains(bits[n]), !(0..=0xFF).contains(&c));
             prop_assert_eq!(((rgb2 >> (8 * n)) & 0xFF) as i128, c.clamp(0, 0xFF));
         }
+        prop_assert!(summary_follows_sources(gte.flag()), "{:08X}", gte.flag().bits());
     }
 
     /// SX2/SY2 and IR0 saturation in RTPS: X = q*IR1 + OFX, SX = X >> 16 saturated to
@@ -353,6 +362,34 @@ proptest! {
             || x > i32::MAX as i128 || x < i32::MIN as i128
             || y > i32::MAX as i128 || y < i32::MIN as i128;
         prop_assert_eq!(flag.intersects(Flag::MAC0_POSITIVE_OVERFLOW.union(Flag::MAC0_NEGATIVE_OVERFLOW)), mac0_out);
+        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+    }
+
+    /// IR0 saturation is not an error source: an RTPS whose screen position, depth and
+    /// depth-cue sum all stay in range leaves FLAG at the IR0 bit alone, without bit 31
+    /// (docs/hardware/gte.md §3).
+    #[test]
+    fn ir0_saturation_alone_leaves_bit_31_clear(
+        v in prop::array::uniform3(-500i16..500), trz in 1000i32..5000, h in 0u16..1000,
+        dqa in -8000i16..8000, dqb in -(1i32 << 29)..(1 << 29)
+    ) {
+        let mut gte = Gte::new();
+        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
+            gte.write_control((i) as u32, w);
+        }
+        gte.write_control(7, trz as u32);
+        gte.write_control(26, h as u32);
+        gte.write_control(27, dqa as u16 as u32);
+        gte.write_control(28, dqb as u32);
+        gte.write_data(0, packed(v[0], v[1]));
+        gte.write_data(1, v[2] as u16 as u32);
+        gte.execute(cmd(Opcode::Rtps, true, false));
+        // SZ3 = VZ + TRZ is at least 500 and H below 1000, so the quotient is below 2.0.
+        let (q, _) = unr_divide(h, (v[2] as i32 + trz) as u16);
+        let d = q as i64 * dqa as i64 + dqb as i64;
+        let saturated = !(0..=0x1000).contains(&(d >> 12));
+        // CFC2 FLAG.
+        prop_assert_eq!(gte.read_control(31), if saturated { Flag::IR0_SATURATED.bits() } else { 0 });
     }
 
     /// Register read/write rules (docs/hardware/gte.md §2).
