@@ -497,6 +497,68 @@ fn divide_boundaries() {
     assert_eq!(unr_divide(0xFE3F, 0x7F20), (0x1FFFF, false));
 }
 
+/// The edges of the depth ranges, value by value: RTPS's SZ3 (0..FFFFh, FLAG.18) and IR3
+/// flag (-8000h..7FFFh from the unshifted sum, FLAG.22) with identity rotation, sf = 1, so
+/// that the depth is VZ + TRZ; AVSZ3's OTZ (0..FFFFh, FLAG.18) with ZSF3 = 1.0 or -1.0, so
+/// that it is the sum of SZ1-3 or its negation (docs/hardware/gte.md §5, §7).
+#[test]
+fn depth_range_edges() {
+    let edges = [
+        -0x8001i32, -0x8000, -0x7FFF, -1, 0, 1, 0x7FFE, 0x7FFF, 0x8000, 0xFFFE, 0xFFFF, 0x1_0000,
+        0x1_0001,
+    ];
+    for &z in &edges {
+        let mut gte = Gte::new();
+        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
+            gte.write_control(i as u32, w);
+        }
+        gte.write_control(7, (z - 100) as u32); // TRZ
+        gte.write_data(1, 100); // VZ0
+        gte.execute(cmd(Opcode::Rtps, true, false));
+        let flag = gte.flag();
+        assert_eq!(
+            gte.read_data(19) as i32,
+            z.clamp(0, 0xFFFF),
+            "SZ3 for depth {z}"
+        );
+        assert_eq!(
+            flag.contains(Flag::SZ3_OTZ_SATURATED),
+            !(0..=0xFFFF).contains(&z),
+            "FLAG.18 for depth {z}"
+        );
+        assert_eq!(
+            gte.read_data(11) as i32,
+            z.clamp(-0x8000, 0x7FFF),
+            "IR3 for depth {z}"
+        );
+        assert_eq!(
+            flag.contains(Flag::IR3_SATURATED),
+            !(-0x8000..=0x7FFF).contains(&z),
+            "FLAG.22 for depth {z}"
+        );
+
+        for zsf in [0x1000i32, -0x1000] {
+            let sum = z.max(0);
+            let mut gte = Gte::new();
+            gte.write_data(17, sum.min(0xFFFF) as u32); // SZ1
+            gte.write_data(18, (sum - sum.min(0xFFFF)) as u32); // SZ2
+            gte.write_control(29, zsf as u16 as u32); // ZSF3
+            gte.execute(Opcode::Avsz3.bits());
+            let otz = sum * zsf.signum();
+            assert_eq!(
+                gte.read_data(7) as i32,
+                otz.clamp(0, 0xFFFF),
+                "OTZ for {otz}"
+            );
+            assert_eq!(
+                gte.flag().contains(Flag::SZ3_OTZ_SATURATED),
+                !(0..=0xFFFF).contains(&otz),
+                "FLAG.18 for OTZ {otz}"
+            );
+        }
+    }
+}
+
 /// Cycle counts (docs/hardware/gte.md §1).
 #[test]
 fn cycle_counts() {

@@ -94,12 +94,14 @@ impl Gte {
         self.regs
             .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
         let z = acc[2] >> 12;
-        if clamp(z, -0x8000, 0x7FFF).1 {
+        // Each range test below is one unsigned compare.
+        if (z + 0x8000) as u64 > 0xFFFF {
             self.flag_bits |= bit::ir(3);
         }
         // SZ3 from the 44-bit accumulator, independent of sf (step 4).
-        let (sz3, saturated) = clamp(z, 0, 0xFFFF);
-        if saturated {
+        let mut sz3 = z;
+        if sz3 as u64 > 0xFFFF {
+            sz3 = if sz3 < 0 { 0 } else { 0xFFFF };
             self.flag_bits |= bit::SZ3_OTZ;
         }
         self.regs.push_sz(sz3 as u16);

@@ -2,7 +2,7 @@
 //! (docs/hardware/gte.md §7).
 
 use crate::Gte;
-use crate::mac::{bit, clamp};
+use crate::mac::bit;
 
 impl Gte {
     /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md §7).
@@ -37,8 +37,10 @@ impl Gte {
 
     fn average_z(&mut self, s: i64) {
         self.set_mac0(s);
-        let (otz, saturated) = clamp(s >> 12, 0, 0xFFFF);
-        if saturated {
+        let mut otz = s >> 12;
+        // Outside 0..=FFFFh is one unsigned compare.
+        if otz as u64 > 0xFFFF {
+            otz = if otz < 0 { 0 } else { 0xFFFF };
             self.flag_bits |= bit::SZ3_OTZ;
         }
         self.regs.set_otz(otz as u16);
