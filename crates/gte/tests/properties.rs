@@ -27,6 +27,22 @@ fn translation() -> impl Strategy<Value = i32> {
     ]
 }
 
+/// A GTE after RTPS (sf = 1, lm = 0) of V0 = `v` with the identity rotation and the control
+/// registers `control` (number, value) written: IR1-3 = V + TR and the depth VZ + TRZ.
+fn identity_rtps(control: &[(u32, u32)], v: [i16; 3]) -> Gte {
+    let mut gte = Gte::new();
+    for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
+        gte.write_control(i as u32, w);
+    }
+    for &(r, w) in control {
+        gte.write_control(r, w);
+    }
+    gte.write_data(0, packed(v[0], v[1]));
+    gte.write_data(1, v[2] as u16 as u32);
+    gte.execute(cmd(Opcode::Rtps, true, false));
+    gte
+}
+
 /// FLAG bit 31 is the OR of bits 30-23 and 18-13 (docs/hardware/gte.md §3).
 fn summary_follows_sources(flag: Flag) -> bool {
     (flag.bits() >> 31 == 1) == (flag.bits() & 0x7F87_E000 != 0)
@@ -327,19 +343,10 @@ proptest! {
         v in prop::array::uniform3(-4000i16..4000), trz in -5000i32..100_000, h in any::<u16>(),
         ofx in any::<i32>(), ofy in any::<i32>(), dqa in any::<i16>(), dqb in any::<i32>()
     ) {
-        let mut gte = Gte::new();
-        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
-            gte.write_control((i) as u32, w);
-        }
-        gte.write_control(7, trz as u32);
-        gte.write_control(24, ofx as u32);
-        gte.write_control(25, ofy as u32);
-        gte.write_control(26, h as u32);
-        gte.write_control(27, dqa as u16 as u32);
-        gte.write_control(28, dqb as u32);
-        gte.write_data(0, packed(v[0], v[1]));
-        gte.write_data(1, v[2] as u16 as u32);
-        gte.execute(cmd(Opcode::Rtps, true, false));
+        let gte = identity_rtps(
+            &[(7, trz as u32), (24, ofx as u32), (25, ofy as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)],
+            v,
+        );
         // Identity rotation, sf=1: IR = V (+TR), SZ3 = VZ + TRZ.
         let z = v[2] as i128 + trz as i128;
         prop_assert_eq!(gte.read_data(19) as i128, z.clamp(0, 0xFFFF));
@@ -373,17 +380,7 @@ proptest! {
         v in prop::array::uniform3(-500i16..500), trz in 1000i32..5000, h in 0u16..1000,
         dqa in -8000i16..8000, dqb in -(1i32 << 29)..(1 << 29)
     ) {
-        let mut gte = Gte::new();
-        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
-            gte.write_control((i) as u32, w);
-        }
-        gte.write_control(7, trz as u32);
-        gte.write_control(26, h as u32);
-        gte.write_control(27, dqa as u16 as u32);
-        gte.write_control(28, dqb as u32);
-        gte.write_data(0, packed(v[0], v[1]));
-        gte.write_data(1, v[2] as u16 as u32);
-        gte.execute(cmd(Opcode::Rtps, true, false));
+        let gte = identity_rtps(&[(7, trz as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)], v);
         // SZ3 = VZ + TRZ is at least 500 and H below 1000, so the quotient is below 2.0.
         let (q, _) = unr_divide(h, (v[2] as i32 + trz) as u16);
         let d = q as i64 * dqa as i64 + dqb as i64;
@@ -508,13 +505,7 @@ fn depth_range_edges() {
         0x1_0001,
     ];
     for &z in &edges {
-        let mut gte = Gte::new();
-        for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
-            gte.write_control(i as u32, w);
-        }
-        gte.write_control(7, (z - 100) as u32); // TRZ
-        gte.write_data(1, 100); // VZ0
-        gte.execute(cmd(Opcode::Rtps, true, false));
+        let gte = identity_rtps(&[(7, (z - 100) as u32)], [0, 0, 100]); // TRZ, VZ0
         let flag = gte.flag();
         assert_eq!(
             gte.read_data(19) as i32,
