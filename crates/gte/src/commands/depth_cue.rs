@@ -44,7 +44,7 @@ impl Gte {
     }
 
     /// DPCS: depth-cue the RGBC colour.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn dpcs(&mut self, shift: u32, lm: bool) {
         let input = Self::color_input(self.regs.rgbc());
         self.depth_cue_interpolate(input, shift, lm);
