@@ -80,16 +80,11 @@ impl Flag {
         Flag(kept | ((kept & Self::ERROR_SOURCES != 0) as u32) << 31)
     }
 
-    /// FLAG as the register holds it: a CTC2 and a command each leave bit 31 the OR of
-    /// the error sources.
-    pub(crate) const fn from_register(bits: u32) -> Flag {
-        Flag(bits)
-    }
-
-    /// FLAG after a command, from the bits its steps set: each error source arrives with bit
-    /// 31 (docs/hardware/gte.md §3), so the bits are the register value.
+    /// FLAG as the register holds it: a CTC2 and a command each leave bits 0-11 clear and
+    /// bit 31 the OR of the error sources (docs/hardware/gte.md §3); a command's bits are
+    /// that value, each error source having brought bit 31 with it.
     #[inline(always)]
-    pub(crate) const fn from_command_bits(bits: u32) -> Flag {
+    pub(crate) const fn from_register(bits: u32) -> Flag {
         debug_assert!(bits & !Self::WRITABLE & !(1 << 31) == 0);
         debug_assert!((bits >> 31 != 0) == (bits & Self::ERROR_SOURCES != 0));
         Flag(bits)

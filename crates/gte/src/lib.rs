@@ -287,11 +287,11 @@ impl Gte {
     }
 
     /// The end of a command: FLAG is the bits its steps set, an error source having brought
-    /// bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm, so that the
-    /// compiler sees which bits the command can set.
+    /// bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm,
+    /// so that the compiler sees which bits the command can set.
     #[inline(always)]
     fn finish(&mut self, op: Opcode) -> Option<u32> {
-        self.regs.set_flag(Flag::from_command_bits(self.flag_bits));
+        self.regs.set_flag(Flag::from_register(self.flag_bits));
         Some(op.cycles())
     }
 }

@@ -94,7 +94,7 @@ impl Gte {
         self.regs
             .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
         let z = acc[2] >> 12;
-        // Each range test below is one unsigned compare.
+        // The IR3 flag's and SZ3's range tests are one unsigned compare each.
         if (z + 0x8000) as u64 > 0xFFFF {
             self.flag_bits |= bit::ir(3);
         }
