@@ -161,13 +161,28 @@ const fn extension(widths: [Width; 32]) -> ([u32; 32], [u32; 32]) {
     (mask, sign)
 }
 
-const DATA_EXTENSION: ([u32; 32], [u32; 32]) = extension(DATA_WIDTH);
+/// The data registers of one width, as a bit set by register number.
+const fn data_of_width(width: Width) -> u32 {
+    let mut set = 0;
+    let mut r = 0;
+    while r < 32 {
+        if DATA_WIDTH[r] as u8 == width as u8 {
+            set |= 1 << r;
+        }
+        r += 1;
+    }
+    set
+}
 const CONTROL_EXTENSION: ([u32; 32], [u32; 32]) = extension(CONTROL_WIDTH);
 
 /// Data registers whose MTC2 does more than store: SXYP, IRGB, ORGB, LZCS, LZCR.
 const DATA_WRITE_SPECIAL: u32 = 1 << 15 | 1 << 28 | 1 << 29 | 1 << 30 | 1 << 31;
 /// Data registers whose MFC2 is not the stored word: SXYP, IRGB, ORGB.
 const DATA_READ_SPECIAL: u32 = 1 << 15 | 1 << 28 | 1 << 29;
+/// Data registers whose MFC2 is the stored word as it is.
+const DATA_READ_WORD: u32 = data_of_width(Width::Word) & !DATA_READ_SPECIAL;
+/// Data registers read back as their low half, zero-extended (OTZ, SZ0-3).
+const DATA_UNSIGNED16: u32 = data_of_width(Width::Unsigned16);
 /// Control register FLAG, whose CTC2 keeps bits 12-30 and recomputes bit 31.
 const FLAG: usize = 31;
 
@@ -177,9 +192,10 @@ fn extend(value: u32, (mask, sign): (&[u32; 32], &[u32; 32]), r: usize) -> u32 {
 }
 
 /// The register file as the engine keeps it, one word per register, so that an MTC2/CTC2 is
-/// one store and an MFC2/CFC2 one load and one fixed extension, whatever the register number,
-/// with no dispatch on it (docs/hardware/gte.md §2). The exceptions are the registers with side
-/// effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG), tested by one bit mask. Control registers
+/// one store and an MFC2/CFC2 one load, extended for a 16-bit data register, whatever the
+/// register number, with no dispatch on it (docs/hardware/gte.md §2): which kind a register
+/// is comes from bit masks indexed by its number. The exceptions are the registers with side
+/// effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG). Control registers
 /// hold the word CFC2 reads. A 16-bit data register (VZ0-2, OTZ, IR0-3, SZ0-3) holds the
 /// word last written to it, of which the hardware keeps the low half: MFC2 extends that half
 /// as the register reads, and commands read only that half. Equality compares what the
@@ -282,16 +298,22 @@ impl core::fmt::Debug for RegisterFile {
 }
 
 impl RegisterFile {
-    /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2): a 16-bit register's
-    /// low half, sign- or zero-extended by the table.
+    /// MFC2: read data register `reg & 31` (docs/hardware/gte.md §2): a 32-bit register's
+    /// word, a 16-bit register's low half sign- or zero-extended. The 32-bit registers, which
+    /// most reads name, are tested first.
     #[inline]
     pub(crate) fn read_data(&self, reg: u32) -> u32 {
         let r = (reg & 31) as usize;
-        if DATA_READ_SPECIAL >> r & 1 != 0 {
-            return self.read_data_special(r);
+        let word = self.data.word(r);
+        if DATA_READ_WORD >> r & 1 != 0 {
+            word
+        } else if DATA_UNSIGNED16 >> r & 1 != 0 {
+            word & 0xFFFF
+        } else if DATA_READ_SPECIAL >> r & 1 == 0 {
+            word as i16 as i32 as u32
+        } else {
+            self.read_data_special(r)
         }
-        let (mask, sign) = &DATA_EXTENSION;
-        extend(self.data.word(r), (mask, sign), r)
     }
 
     fn read_data_special(&self, r: usize) -> u32 {
