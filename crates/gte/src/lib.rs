@@ -66,6 +66,17 @@ pub struct Gte {
     flag_bits: u32,
 }
 
+/// The opcode of each value of bits 0-5, as [`Opcode::from_bits`].
+const OPCODES: [Option<Opcode>; 64] = {
+    let mut table = [None; 64];
+    let mut bits = 0;
+    while bits < 64 {
+        table[bits] = Opcode::from_bits(bits as u32);
+        bits += 1;
+    }
+    table
+};
+
 impl Gte {
     /// A GTE with every register zero and the hardware divide.
     pub fn new() -> Self {
@@ -190,96 +201,96 @@ impl Gte {
         self.flag_bits = 0;
         // One dispatch on bits 0-5 (the opcode table of `Opcode::from_bits`) runs the command
         // and yields its cycle count.
-        match command & 0x3F {
-            0x01 => {
+        match OPCODES[(command & 0x3F) as usize] {
+            Some(Opcode::Rtps) => {
                 self.rtps(c.shift(), c.lm());
                 self.finish(Opcode::Rtps)
             }
-            0x06 => {
+            Some(Opcode::Nclip) => {
                 self.nclip();
                 self.finish(Opcode::Nclip)
             }
-            0x0C => {
+            Some(Opcode::Op) => {
                 self.op(c.shift(), c.lm());
                 self.finish(Opcode::Op)
             }
-            0x10 => {
+            Some(Opcode::Dpcs) => {
                 self.dpcs(c.shift(), c.lm());
                 self.finish(Opcode::Dpcs)
             }
-            0x11 => {
+            Some(Opcode::Intpl) => {
                 self.intpl(c.shift(), c.lm());
                 self.finish(Opcode::Intpl)
             }
-            0x12 => {
+            Some(Opcode::Mvmva) => {
                 self.mvmva(c, c.shift(), c.lm());
                 self.finish(Opcode::Mvmva)
             }
-            0x13 => {
+            Some(Opcode::Ncds) => {
                 self.ncds(c.shift(), c.lm());
                 self.finish(Opcode::Ncds)
             }
-            0x14 => {
+            Some(Opcode::Cdp) => {
                 self.cdp(c.shift(), c.lm());
                 self.finish(Opcode::Cdp)
             }
-            0x16 => {
+            Some(Opcode::Ncdt) => {
                 self.ncdt(c.shift(), c.lm());
                 self.finish(Opcode::Ncdt)
             }
-            0x1B => {
+            Some(Opcode::Nccs) => {
                 self.nccs(c.shift(), c.lm());
                 self.finish(Opcode::Nccs)
             }
-            0x1C => {
+            Some(Opcode::Cc) => {
                 self.cc(c.shift(), c.lm());
                 self.finish(Opcode::Cc)
             }
-            0x1E => {
+            Some(Opcode::Ncs) => {
                 self.ncs(c.shift(), c.lm());
                 self.finish(Opcode::Ncs)
             }
-            0x20 => {
+            Some(Opcode::Nct) => {
                 self.nct(c.shift(), c.lm());
                 self.finish(Opcode::Nct)
             }
-            0x28 => {
+            Some(Opcode::Sqr) => {
                 self.sqr(c.shift(), c.lm());
                 self.finish(Opcode::Sqr)
             }
-            0x29 => {
+            Some(Opcode::Dcpl) => {
                 self.dcpl(c.shift(), c.lm());
                 self.finish(Opcode::Dcpl)
             }
-            0x2A => {
+            Some(Opcode::Dpct) => {
                 self.dpct(c.shift(), c.lm());
                 self.finish(Opcode::Dpct)
             }
-            0x2D => {
+            Some(Opcode::Avsz3) => {
                 self.avsz3();
                 self.finish(Opcode::Avsz3)
             }
-            0x2E => {
+            Some(Opcode::Avsz4) => {
                 self.avsz4();
                 self.finish(Opcode::Avsz4)
             }
-            0x30 => {
+            Some(Opcode::Rtpt) => {
                 self.rtpt(c.shift(), c.lm());
                 self.finish(Opcode::Rtpt)
             }
-            0x3D => {
+            Some(Opcode::Gpf) => {
                 self.gpf(c.shift(), c.lm());
                 self.finish(Opcode::Gpf)
             }
-            0x3E => {
+            Some(Opcode::Gpl) => {
                 self.gpl(c.shift(), c.lm());
                 self.finish(Opcode::Gpl)
             }
-            0x3F => {
+            Some(Opcode::Ncct) => {
                 self.ncct(c.shift(), c.lm());
                 self.finish(Opcode::Ncct)
             }
-            _ => {
+            None => {
                 self.regs.set_flag(Flag::EMPTY);
                 None
             }
