@@ -267,10 +267,13 @@ impl Gte {
         self.regs.set_mac(0, value as i32);
     }
 
-    /// FLAG bits 16/15 for a MAC0-path value.
+    /// FLAG bits 16/15 for a MAC0-path value. Leaving the 32-bit range takes extreme
+    /// operands (a quotient near its limit times an IR near its own), so the test is a
+    /// branch marked cold rather than a select.
     #[inline(always)]
     pub(crate) fn flag_mac0(&mut self, value: i64) {
         if value as i32 as i64 != value {
+            core::hint::cold_path();
             self.flag_bits |= if value < 0 {
                 bit::MAC0_NEGATIVE
             } else {
