@@ -217,8 +217,11 @@ pub(crate) struct RegisterFile {
 
 /// 32 registers of 32 bits, each kept as its four bytes, low first: a word is one load or
 /// store, and each 16-bit half can be loaded on its own (the high half from its two bytes),
-/// so that reading both halves of a word (a matrix row, a vertex's X and Y) takes two narrow
-/// loads and no shifts.
+/// so that reading both halves of a matrix word takes two narrow loads and no shifts. The
+/// data registers an emulator has usually just written with MTC2 (a vertex's X and Y, SXY)
+/// are read as one word and split instead: a narrow load of a word's high half while the
+/// word's store is still in flight is not forwarded on every core (AMD Zen 4 waits for the
+/// store to complete; docs/performance.md), where a load of the whole word is.
 #[derive(Clone, Copy, Default)]
 #[repr(C, align(4))]
 struct Words([[u8; 4]; 32]);
@@ -397,11 +400,8 @@ impl RegisterFile {
     /// Vertex Vn (n = 0..2): X, Y, Z.
     #[inline(always)]
     pub(crate) fn v(&self, n: usize) -> [i16; 3] {
-        [
-            self.data.lo(2 * n),
-            self.data.hi(2 * n),
-            self.data.lo(2 * n + 1),
-        ]
+        let xy = self.data.word(2 * n);
+        [xy as i16, (xy >> 16) as i16, self.data.lo(2 * n + 1)]
     }
 
     /// RGBC (r6).
@@ -431,7 +431,8 @@ impl RegisterFile {
     /// Screen X and Y of SXYn (n = 0..2) as signed halves.
     #[inline(always)]
     pub(crate) fn sxy(&self, n: usize) -> (i16, i16) {
-        (self.data.lo(12 + n), self.data.hi(12 + n))
+        let w = self.data.word(12 + n);
+        (w as i16, (w >> 16) as i16)
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
