@@ -11,7 +11,8 @@
 //! engine (without it [`Gte::set_divide_mode`] refuses them); `serde` serialization of
 //! [`GteState`]. The crate is `no_std` and allocates nothing.
 #![no_std]
-#![forbid(unsafe_code)]
+// One volatile load in `registers.rs` (`Words::whole`) is the crate's only unsafe code.
+#![deny(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 mod command;

@@ -246,11 +246,12 @@ impl Gte {
         saturate_ir(&mut self.flag_bits, n, value, lm)
     }
 
-    /// IRn = clamp(value) with FLAG bit 25-n (docs/hardware/gte.md §4).
+    /// IRn = clamp(value) with FLAG bit 25-n (docs/hardware/gte.md §4); returns IRn.
     #[inline(always)]
-    pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) {
+    pub(crate) fn set_ir(&mut self, n: usize, value: i32, lm: bool) -> i16 {
         let v = self.saturate_ir(n, value, lm);
         self.regs.set_ir(n, v);
+        v
     }
 
     /// The common tail of a matrix-vector row: MACn from the sum, IRn from MACn.

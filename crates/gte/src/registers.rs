@@ -195,10 +195,10 @@ fn extend(value: u32, (mask, sign): (&[u32; 32], &[u32; 32]), r: usize) -> u32 {
 /// one store and an MFC2/CFC2 one load, extended for a 16-bit data register, whatever the
 /// register number, with no dispatch on it (docs/hardware/gte.md §2): which kind a register
 /// is comes from bit masks indexed by its number. The exceptions are the registers with side
-/// effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG). Control registers
-/// hold the word CFC2 reads. A 16-bit data register (VZ0-2, OTZ, IR0-3, SZ0-3) holds the
-/// word last written to it, of which the hardware keeps the low half: MFC2 extends that half
-/// as the register reads, and commands read only that half. Equality compares what the
+/// effects (SXYP, IRGB, ORGB, LZCS, LZCR, FLAG). Control registers hold the word CFC2 reads.
+/// A 16-bit data register (VZ0-2, OTZ, IR0-3, SZ0-3) holds the word last written to it, of
+/// which the hardware keeps the low half: MFC2 extends that half as the register reads, and
+/// commands use only that half. Equality compares what the
 /// registers hold. Commands read and write the fields through the typed accessors below.
 ///
 /// It also keeps, for each add vector (TR, BK, FC), whether a sum starting from it can leave
@@ -218,10 +218,11 @@ pub(crate) struct RegisterFile {
 /// 32 registers of 32 bits, each kept as its four bytes, low first: a word is one load or
 /// store, and each 16-bit half can be loaded on its own (the high half from its two bytes),
 /// so that reading both halves of a matrix word takes two narrow loads and no shifts. The
-/// data registers an emulator has usually just written with MTC2 (a vertex's X and Y, SXY)
-/// are read as one word and split instead: a narrow load of a word's high half while the
-/// word's store is still in flight is not forwarded on every core (AMD Zen 4 waits for the
-/// store to complete; docs/performance.md), where a load of the whole word is.
+/// data registers an emulator has usually just written with MTC2 are read as whole words
+/// instead (a vertex's X and Y and SXY split after one load, IR and SZ through
+/// [`Words::whole`]): a load narrower than the store it reads from is not forwarded from the
+/// store on every core (AMD Zen 4 waits; docs/performance.md, "Store forwarding"), where a
+/// load of the whole word is.
 #[derive(Clone, Copy, Default)]
 #[repr(C, align(4))]
 struct Words([[u8; 4]; 32]);
@@ -243,6 +244,23 @@ impl Words {
     #[inline(always)]
     fn lo(&self, r: usize) -> i16 {
         self.word(r) as i16
+    }
+
+    /// Register `r`'s word as one 32-bit load that the compiler keeps whole. The compiler
+    /// turns the load of a word whose low half alone is used into a 16-bit load; after the
+    /// 32-bit store of an MTC2 such a load waits on some cores (AMD Zen 4), where a 32-bit
+    /// load takes the stored word straight from the store (docs/performance.md, "Store
+    /// forwarding"). A volatile load is neither narrowed nor merged with its neighbours.
+    #[inline(always)]
+    #[allow(unsafe_code)]
+    fn whole(&self, r: usize) -> u32 {
+        let bytes: &[u8; 4] = &self.0[r];
+        // SAFETY: `bytes` comes from a shared reference, so it is valid for reads of its 4
+        // initialized bytes and nothing writes them while `&self` lives; `Words` is
+        // `repr(C, align(4))` around an array of `[u8; 4]`, so register `r` starts at byte
+        // 4r of a 4-aligned base and is aligned for `u32`; every 4 bytes are a valid `u32`.
+        let word = unsafe { core::ptr::read_volatile((bytes as *const [u8; 4]).cast::<u32>()) };
+        u32::from_le(word)
     }
 
     /// Register `r`'s low half, unsigned.
@@ -416,10 +434,11 @@ impl RegisterFile {
         self.data.set(7, value as u32);
     }
 
-    /// IRn (n = 0..3).
+    /// IRn (n = 0..3), from the whole word ([`Words::whole`]): commands read IR as an input
+    /// an emulator has just written.
     #[inline(always)]
     pub(crate) fn ir(&self, n: usize) -> i16 {
-        self.data.lo(8 + n)
+        self.data.whole(8 + n) as i16
     }
 
     /// Set IRn (n = 0..3).
@@ -443,10 +462,10 @@ impl RegisterFile {
         self.data.set(14, value);
     }
 
-    /// SZn (n = 0..3).
+    /// SZn (n = 0..3), from the whole word ([`Words::whole`]).
     #[inline(always)]
     pub(crate) fn sz(&self, n: usize) -> u16 {
-        self.data.lo_unsigned(16 + n)
+        self.data.whole(16 + n) as u16
     }
 
     /// Push a value onto the screen Z FIFO (SZ0 <- SZ1 <- SZ2 <- SZ3 <- value).

@@ -9,8 +9,10 @@ use crate::commands::depth_cue::interpolate;
 use crate::mac::{Step, color_entry as color, matrix_products, step};
 use crate::registers::RegisterFile;
 
-/// The operands of a lighting command, read once per command.
-struct Lighting {
+/// The operands of a lighting command, read once per command, and the register file for
+/// IR0, which the depth cue alone reads, at its use.
+struct Lighting<'r> {
+    regs: &'r RegisterFile,
     /// Light matrix LLM, widened.
     llm: [[i64; 3]; 3],
     /// Light colour matrix LCM, widened.
@@ -23,25 +25,23 @@ struct Lighting {
     color: [i64; 3],
     /// RGBC's CODE byte, in place.
     code: u32,
-    /// IR0, the depth-cue weight.
-    ir0: i64,
     /// 0 or 12 (sf).
     shift: u32,
     lm: bool,
 }
 
-impl Lighting {
+impl<'r> Lighting<'r> {
     #[inline(always)]
-    fn read(regs: &RegisterFile, shift: u32, lm: bool) -> Self {
+    fn read(regs: &'r RegisterFile, shift: u32, lm: bool) -> Self {
         let rgbc = regs.rgbc();
         Lighting {
+            regs,
             llm: regs.llm_wide(),
             lcm: regs.lcm_wide(),
             bk: regs.bk().map(|b| (b as i64) << 12),
             fc: regs.fc().map(|f| (f as i64) << 12),
             color: [0, 8, 16].map(|s| ((rgbc >> s) & 0xFF) as i64),
             code: rgbc & 0xFF00_0000,
-            ir0: regs.ir(0) as i64,
             shift,
             lm,
         }
@@ -106,7 +106,8 @@ impl Lighting {
     #[inline(always)]
     fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
         let input = self.color_times(ir);
-        interpolate(flags, input, self.fc, self.ir0, PLAIN, self.shift, self.lm)
+        let ir0 = self.regs.ir(0) as i64;
+        interpolate(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
     }
 }
 

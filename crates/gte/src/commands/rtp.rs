@@ -87,8 +87,8 @@ impl Gte {
         let mac1 = self.set_mac(1, acc[0], shift);
         let mac2 = self.set_mac(2, acc[1], shift);
         let mac3 = self.set_mac(3, acc[2], shift);
-        self.set_ir(1, mac1, lm);
-        self.set_ir(2, mac2, lm);
+        let ir1 = self.set_ir(1, mac1, lm);
+        let ir2 = self.set_ir(2, mac2, lm);
         // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
         let ir3_min = if lm { 0 } else { -0x8000 };
         self.regs
@@ -128,8 +128,8 @@ impl Gte {
         let q = q as i64;
         // Screen position from the untruncated 64-bit value (step 6).
         let (ofx, ofy) = self.regs.offset();
-        let x = q * self.regs.ir(1) as i64 + ofx as i64;
-        let y = q * self.regs.ir(2) as i64 + ofy as i64;
+        let x = q * ir1 as i64 + ofx as i64;
+        let y = q * ir2 as i64 + ofy as i64;
         self.flag_mac0(x);
         self.flag_mac0(y);
         let (sx, sx_sat) = clamp(x >> 16, -0x400, 0x3FF);
