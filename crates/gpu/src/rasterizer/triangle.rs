@@ -538,6 +538,15 @@ pub(super) fn draw_inline<
         let s = &env.sampler;
         s.page_x + 64 <= VRAM_WIDTH && s.page_y + 256 <= 512
     });
+    // Likewise a raw 15-bit page of 256 halfwords and 256 lines: texel (u, v) is the
+    // halfword at this index plus v * 1024 + u.
+    let raw15_page = (TEX == 3 && RAW && env.sampler.window_is_identity())
+        .then(|| {
+            let s = &env.sampler;
+            (s.page_x + 256 <= VRAM_WIDTH && s.page_y + 256 <= 512)
+                .then_some(s.page_y * VRAM_WIDTH + s.page_x)
+        })
+        .flatten();
 
     let stride = match rows {
         super::Rows::All => 1,
@@ -608,6 +617,18 @@ pub(super) fn draw_inline<
                         }
                     }
                     let span = (row, y, x_start, x_end);
+                    if let Some(page) = raw15_page {
+                        raw15_span::<BLEND, MASK_CHECK>(
+                            vram,
+                            (row, x_start, x_end),
+                            (acc[3], acc[4]),
+                            (step[3], step[4]),
+                            page,
+                            (env.mask_or, env.blend),
+                        );
+                        y += stride;
+                        continue;
+                    }
                     // One copy of the pixel loop per table kind, chosen per span.
                     match (dithered, plain_page) {
                         (Some(cells), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true>(
@@ -738,6 +759,34 @@ fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
         let word = vram[(page + tv * VRAM_WIDTH + (tu >> 2)) & (VRAM_LEN - 1)];
         let table = if CELLS { &cells[(x & 3) as usize] } else { lut };
         let e = table[usize::from((word >> ((tu & 3) * 4)) & 0xF)];
+        super::write_shaded::<BLEND, MASK_CHECK>(vram, row + x as usize, e, mask_or, blend);
+        u = u.wrapping_add(du);
+        v = v.wrapping_add(dv);
+    }
+}
+
+/// Write `[x_start, x_end)` of the VRAM line at `row` from a raw 15-bit texture under the
+/// identity window whose page lies inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
+/// its texel, the halfword `page + v * 1024 + u`, unmodulated; a texel of 0000h leaves the
+/// pixel as it is, and bit 15 of the others selects blending. U and V start at `uv` and step
+/// by `duv` (8.24).
+#[inline(always)]
+fn raw15_span<const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    (row, x_start, x_end): (usize, i32, i32),
+    (mut u, mut v): (u32, u32),
+    (du, dv): (u32, u32),
+    page: usize,
+    (mask_or, blend): (u16, crate::state::BlendMode),
+) {
+    for x in x_start..x_end {
+        let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
+        let texel = vram[(page + tv * VRAM_WIDTH + tu) & (VRAM_LEN - 1)];
+        let e = if texel == 0 {
+            0
+        } else {
+            0x1_0000 | u32::from(texel)
+        };
         super::write_shaded::<BLEND, MASK_CHECK>(vram, row + x as usize, e, mask_or, blend);
         u = u.wrapping_add(du);
         v = v.wrapping_add(dv);
