@@ -429,53 +429,46 @@ proptest! {
         tex in texture(),
         env in env(),
     ) {
-        let (mut g, background) = gpu_with_background(env.seed);
-        // E1h with another blend mode and page: the polygon's texpage replaces bits 0-8 (§2).
-        g.gp0(0xE100_0000 | e1_mode << 5 | (env.dither as u32) << 9 | 0x1F);
-        g.gp0(tex.e2());
-        g.gp0_words(&env.words());
-        // Gouraud-textured polygons (34h-3Fh) carry one colour per vertex (§2).
-        let cmd = 0x24 | raw as u32 | (semi as u32) << 1 | (quad as u32) << 3 | (gouraud as u32) << 4;
-        let texpage = tex.page_bits() | mode << 5;
-        let n = if quad { 4 } else { 3 };
-        let vertex_rgb = |i: usize| if gouraud { shades[i] } else { rgb };
-        let mut words = vec![cmd << 24 | rgb_word(vertex_rgb(0))];
-        for (i, p) in pts[..n].iter().enumerate() {
-            let attr = match i {
-                0 => tex.clut << 16,
-                1 => texpage << 16,
-                _ => 0,
-            };
-            if i > 0 && gouraud {
-                words.push(rgb_word(shades[i]));
-            }
-            words.push(xy(p.0, p.1));
-            words.push(p.2[0] as u32 | (p.2[1] as u32) << 8 | attr);
-        }
-        g.gp0_words(&words);
+        let case = TexturedPolygon { pts, quad, gouraud, shades, rgb, raw, semi, mode, e1_mode, tex };
+        check_textured_polygon(&case, &env)?;
+    }
 
-        let mut expected = background.clone();
-        for tri in halves(quad) {
-            let v = tri.map(|i| {
-                let p = &pts[i];
-                let c = rgb8(vertex_rgb(i));
-                env.vertex(p.0, p.1, [c[0] as i64, c[1] as i64, c[2] as i64, p.2[0] as i64, p.2[1] as i64])
-            });
-            for p in model::triangle(v, env.clip()) {
-                let t = tex.texel(&background, p.attr[3], p.attr[4]);
-                if t == 0 {
-                    continue;
-                }
-                // Flat polygons use their one colour; Gouraud ones the §3.6 colour at the pixel.
-                let c = if gouraud { [p.attr[0], p.attr[1], p.attr[2]] } else { rgb8(rgb) };
-                let color = if raw { t } else { pixel::modulate(t, c, p.x, p.y, env.dither) };
-                let bit15 = t & 0x8000 != 0;
-                let blend = (semi && bit15).then_some(mode);
-                pixel::plot(&mut expected, (p.x, p.y), color, bit15, blend, env.mask);
-            }
-        }
-        let vram = g.vram();
-        prop_assert!(*vram == expected, "{}", difference(vram, &expected, &background));
+    /// Raw 15-bit textured polygons, the case whose pages under the identity window are read
+    /// straight from VRAM (GP0 25h, 27h, 2Dh, 2Fh, ...; §6, §7), against the model as above:
+    /// pages at x 512-768, mostly the identity window.
+    #[test]
+    fn raw15_polygons_match_model(
+        pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 2]>()), 4),
+        (quad, gouraud, semi) in any::<(bool, bool, bool)>(),
+        shades in prop::collection::vec(color(), 4),
+        (mode, e1_mode) in (0u32..4, 0u32..4),
+        (page_x, page_y) in (8u32..13, 0u32..2),
+        window in prop_oneof![3 => Just([0u32; 4]), 1 => [0u32..32, 0u32..32, 0u32..32, 0u32..32]],
+        env in env(),
+    ) {
+        let tex = Texture { page_x, page_y, depth: 2, clut: 0, window };
+        let case = TexturedPolygon {
+            pts, quad, gouraud, shades, rgb: [0x80; 3], raw: true, semi, mode, e1_mode, tex,
+        };
+        check_textured_polygon(&case, &env)?;
+    }
+
+    /// [`raw15_identity_window_case`]: triangles around their own page, which sits anywhere
+    /// in VRAM (its 256 halfwords wrap past x 1023 from page X 13 on), so that many draw over
+    /// the texels they read.
+    #[test]
+    fn raw15_page_read_directly_matches_the_window_path(
+        around in prop::collection::vec((-64i32..320, -64i32..320, any::<[u8; 2]>()), 3),
+        (page_x, page_y) in (0u32..16, 0u32..2),
+        semi_mode in (any::<bool>(), 0u32..4),
+        (set, check) in any::<(bool, bool)>(),
+        seed in any::<u64>(),
+    ) {
+        let pts: Vec<_> = around
+            .iter()
+            .map(|&(dx, dy, uv)| ((64 * page_x as i32 + dx).clamp(0, 1023), (256 * page_y as i32 + dy).clamp(0, 511), uv))
+            .collect();
+        raw15_identity_window_case(&pts, (page_x, page_y), semi_mode, Mask { set, check }, seed)?;
     }
 
     /// Rectangles (GP0 60h-7Fh): variable size (W & 3FFh by H & 1FFh), 1x1, 8x8, 16x16;
@@ -559,6 +552,152 @@ proptest! {
 /// included) and two 512x64 semi-transparent flat rectangles cover them with a foreground
 /// whose 5-bit channels take the edge values 0, 1, 16, 30, 31 in every combination; the
 /// mask bits alternate between the four E6h settings. The whole VRAM is compared.
+/// One textured polygon (GP0 24h-3Fh) for [`check_textured_polygon`].
+struct TexturedPolygon {
+    pts: Vec<(i32, i32, [u8; 2])>,
+    quad: bool,
+    gouraud: bool,
+    shades: Vec<[u8; 3]>,
+    rgb: [u8; 3],
+    raw: bool,
+    semi: bool,
+    mode: u32,
+    e1_mode: u32,
+    tex: Texture,
+}
+
+/// Draw `case` over the random VRAM of `env` and compare the whole VRAM with the model:
+/// texel from §7 (window, page, CLUT; 0000h not drawn), modulated per §6 and dithered when
+/// E1h bit 9 is set unless raw (§6 "When dithering applies"), blended with the texpage
+/// attribute's mode only where the texel has bit 15, which is also written (§6). UV and
+/// Gouraud colours from the §3.6 model.
+fn check_textured_polygon(case: &TexturedPolygon, env: &Env) -> Result<(), TestCaseError> {
+    let TexturedPolygon {
+        pts,
+        quad,
+        gouraud,
+        shades,
+        rgb,
+        raw,
+        semi,
+        mode,
+        e1_mode,
+        tex,
+    } = case;
+    let (quad, gouraud, raw, semi, rgb) = (*quad, *gouraud, *raw, *semi, *rgb);
+    let (mut g, background) = gpu_with_background(env.seed);
+    // E1h with another blend mode and page: the polygon's texpage replaces bits 0-8 (§2).
+    g.gp0(0xE100_0000 | e1_mode << 5 | (env.dither as u32) << 9 | 0x1F);
+    g.gp0(tex.e2());
+    g.gp0_words(&env.words());
+    // Gouraud-textured polygons (34h-3Fh) carry one colour per vertex (§2).
+    let cmd = 0x24 | raw as u32 | (semi as u32) << 1 | (quad as u32) << 3 | (gouraud as u32) << 4;
+    let texpage = tex.page_bits() | mode << 5;
+    let n = if quad { 4 } else { 3 };
+    let vertex_rgb = |i: usize| if gouraud { shades[i] } else { rgb };
+    let mut words = vec![cmd << 24 | rgb_word(vertex_rgb(0))];
+    for (i, p) in pts[..n].iter().enumerate() {
+        let attr = match i {
+            0 => tex.clut << 16,
+            1 => texpage << 16,
+            _ => 0,
+        };
+        if i > 0 && gouraud {
+            words.push(rgb_word(shades[i]));
+        }
+        words.push(xy(p.0, p.1));
+        words.push(p.2[0] as u32 | (p.2[1] as u32) << 8 | attr);
+    }
+    g.gp0_words(&words);
+
+    let mut expected = background.clone();
+    for tri in halves(quad) {
+        let v = tri.map(|i| {
+            let p = &pts[i];
+            let c = rgb8(vertex_rgb(i));
+            env.vertex(
+                p.0,
+                p.1,
+                [
+                    c[0] as i64,
+                    c[1] as i64,
+                    c[2] as i64,
+                    p.2[0] as i64,
+                    p.2[1] as i64,
+                ],
+            )
+        });
+        for p in model::triangle(v, env.clip()) {
+            let t = tex.texel(&background, p.attr[3], p.attr[4]);
+            if t == 0 {
+                continue;
+            }
+            // Flat polygons use their one colour; Gouraud ones the §3.6 colour at the pixel.
+            let c = if gouraud {
+                [p.attr[0], p.attr[1], p.attr[2]]
+            } else {
+                rgb8(rgb)
+            };
+            let color = if raw {
+                t
+            } else {
+                pixel::modulate(t, c, p.x, p.y, env.dither)
+            };
+            let bit15 = t & 0x8000 != 0;
+            let blend = (semi && bit15).then_some(*mode);
+            pixel::plot(&mut expected, (p.x, p.y), color, bit15, blend, env.mask);
+        }
+    }
+    let vram = g.vram();
+    prop_assert!(
+        *vram == expected,
+        "{}",
+        difference(vram, &expected, &background)
+    );
+    Ok(())
+}
+
+/// A raw 15-bit triangle whose UVs stay below 128 samples the same texels under the identity
+/// window and under a window that masks texel X and Y bit 7 (§7), but only the first reads
+/// its page straight from VRAM: the two must leave the same VRAM, also where the triangle
+/// draws over its own page, which the console reads and writes pixel by pixel.
+fn raw15_identity_window_case(
+    pts: &[(i32, i32, [u8; 2])],
+    (page_x, page_y): (u32, u32),
+    (semi, mode): (bool, u32),
+    mask: Mask,
+    seed: u64,
+) -> Result<(), TestCaseError> {
+    let draw = |window: u32| {
+        let (mut g, _) = gpu_with_background(seed);
+        g.gp0_words(&[
+            0xE300_0000,
+            0xE400_0000 | 1023 | 511 << 10,
+            0xE500_0000,
+            mask.e6(),
+        ]);
+        g.gp0(0xE200_0000 | window);
+        let texpage = page_x | page_y << 4 | 2 << 7 | mode << 5;
+        let cmd = 0x25 | (semi as u32) << 1;
+        let mut words = vec![cmd << 24];
+        for (i, p) in pts.iter().enumerate() {
+            let attr = if i == 1 { texpage << 16 } else { 0 };
+            words.push(xy(p.0, p.1));
+            words.push((p.2[0] & 0x7F) as u32 | ((p.2[1] & 0x7F) as u32) << 8 | attr);
+        }
+        g.gp0_words(&words);
+        g.vram().clone()
+    };
+    // E2h mask X and Y = 10h (texel bit 7), offsets 0.
+    let (direct, windowed) = (draw(0), draw(0x10 | 0x10 << 5));
+    prop_assert!(
+        direct == windowed,
+        "{}",
+        difference(&direct, &windowed, &windowed)
+    );
+    Ok(())
+}
+
 #[test]
 fn blend_modes_over_every_background() {
     let levels = [0u32, 1, 16, 30, 31];
