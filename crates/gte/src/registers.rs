@@ -425,7 +425,7 @@ impl RegisterFile {
     /// RGBC (r6).
     #[inline(always)]
     pub(crate) fn rgbc(&self) -> u32 {
-        self.data.word(6)
+        self.data.whole(6)
     }
 
     /// OTZ (r7).
