@@ -63,10 +63,13 @@ const UNR_SEEDS: [u16; 257] = {
 /// The UNR quotient for a divide that does not overflow (`H < 2 * SZ3`).
 #[inline(always)]
 pub(crate) const fn unr_quotient(h: u16, sz3: u16) -> u32 {
-    // sz3 > h / 2 >= 0, so sz3 != 0 and the shift count is 0..=15.
-    let shift = sz3.leading_zeros();
-    let n = (h as u64) << shift;
-    let d = (sz3 as i64) << shift; // 8000h..=FFFFh
+    // sz3 > h / 2 >= 0, so sz3 != 0. Normalising shifts sz3 and h left by 15 - log2(sz3),
+    // 0..=15: the same as shifting left by 15 and right by the log, which drops only the 15
+    // zero bits the first shift brought in. ORing in bit 0 keeps the log and tells the
+    // compiler the operand is not 0.
+    let log = (sz3 as u32 | 1).ilog2();
+    let n = ((h as u64) << 15) >> log;
+    let d = ((sz3 as i64) << 15) >> log; // 8000h..=FFFFh
     let index = ((d - 0x7FC0) >> 7) as usize; // 0..=256
     let u = UNR_SEEDS[index] as i64;
     let d = (0x200_0080 - d * u) >> 8;
