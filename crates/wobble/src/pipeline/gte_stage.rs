@@ -278,6 +278,7 @@ fn light(
 /// keeps the colour of the last factor it was faded by. NCCT and NCDT are NCCS and NCDS for
 /// each of three normals (§8), so the colours are the same.
 #[allow(clippy::too_many_arguments)]
+#[inline(always)]
 fn light_shared(
     g: &mut Geometry,
     (lit, fogged): (bool, bool),
