@@ -547,11 +547,6 @@ proptest! {
     }
 }
 
-/// Every background value under every blend mode (§6 "Semi-transparency"), so a carry or
-/// borrow between packed channels cannot hide: rows 0-63 hold the 65,536 halfwords (bit 15
-/// included) and two 512x64 semi-transparent flat rectangles cover them with a foreground
-/// whose 5-bit channels take the edge values 0, 1, 16, 30, 31 in every combination; the
-/// mask bits alternate between the four E6h settings. The whole VRAM is compared.
 /// One textured polygon (GP0 24h-3Fh) for [`check_textured_polygon`].
 struct TexturedPolygon {
     pts: Vec<(i32, i32, [u8; 2])>,
@@ -698,6 +693,11 @@ fn raw15_identity_window_case(
     Ok(())
 }
 
+/// Every background value under every blend mode (§6 "Semi-transparency"), so a carry or
+/// borrow between packed channels cannot hide: rows 0-63 hold the 65,536 halfwords (bit 15
+/// included) and two 512x64 semi-transparent flat rectangles cover them with a foreground
+/// whose 5-bit channels take the edge values 0, 1, 16, 30, 31 in every combination; the
+/// mask bits alternate between the four E6h settings. The whole VRAM is compared.
 #[test]
 fn blend_modes_over_every_background() {
     let levels = [0u32, 1, 16, 30, 31];
