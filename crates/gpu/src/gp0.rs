@@ -299,6 +299,16 @@ fn texture(mode: &DrawMode, clut_attr: u32, raw: bool) -> Texture {
     }
 }
 
+/// A quad's second triangle: vertices 1, 2 and 3 of the packet, drawn as the first is
+/// (docs/hardware/gpu.md §3).
+#[inline(always)]
+fn second_triangle(first: &Triangle, fourth: Vertex) -> Triangle {
+    Triangle {
+        vertices: [first.vertices[1], first.vertices[2], fourth],
+        ..*first
+    }
+}
+
 /// Decode a polygon packet (docs/hardware/gpu.md §2, §3).
 pub(crate) fn polygon_packet(
     p: &[u32; MAX_PACKET],
@@ -348,10 +358,7 @@ pub(crate) fn polygon_packet(
         blend: semi.then_some(mode.blend),
         dither: mode.dither && dither_applies(gouraud, textured, raw),
     };
-    let second = quad.then_some(Triangle {
-        vertices: [verts[1], verts[2], verts[3]],
-        ..first
-    });
+    let second = quad.then(|| second_triangle(&first, verts[3]));
     PolygonPacket {
         first,
         second,
@@ -584,10 +591,11 @@ impl Gpu {
     }
 
     /// [`polygon_packet`] for the packet being executed: the texpage attribute's bits are
-    /// written into the draw mode in place (docs/hardware/gpu.md §2), and the triangles are
-    /// decoded from fixed word positions.
+    /// written into the draw mode in place (docs/hardware/gpu.md §2), and the vertices are
+    /// decoded from fixed word positions. Returns the first triangle and a quad's fourth
+    /// vertex; [`second_triangle`] makes the quad's second triangle from them.
     #[inline(always)]
-    fn decode_polygon(&mut self, p: &[u32]) -> (Triangle, Option<Triangle>) {
+    fn decode_polygon(&mut self, p: &[u32]) -> (Triangle, Option<Vertex>) {
         let cmd = p[0];
         let gouraud = cmd & (1 << 28) != 0;
         let quad = cmd & (1 << 27) != 0;
@@ -636,11 +644,7 @@ impl Gpu {
             blend: semi.then_some(mode.blend),
             dither: mode.dither && dither_applies(gouraud, textured, raw),
         };
-        let second = fourth.map(|d| Triangle {
-            vertices: [verts[1], verts[2], d],
-            ..first
-        });
-        (first, second)
+        (first, fourth)
     }
 
     /// Execute a polygon packet, `p` holding at least its words; returns its cost in draw
@@ -649,26 +653,32 @@ impl Gpu {
         let cmd = p.first().copied().unwrap_or(0);
         let gouraud = cmd & (1 << 28) != 0;
         let semi = cmd & (1 << 25) != 0;
-        let (tri, second) = self.decode_polygon(p);
-        let packet_second = second;
+        let (tri, fourth) = self.decode_polygon(p);
         let textured = tri.texture.is_some();
         let clut_units = tri
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let read_back = semi || self.draw.mask.check;
         let rows = self.draw_rows();
-        if let Some(second) = &packet_second
-            && let Some(drawn) = draw_tiled_quad(&mut self.vram, &self.draw, &tri, second, rows)
-        {
-            // Both triangles' set-up; the pixels, each drawn by one of them, once.
-            return Cost::triangle(false, false, false, false, drawn).saturating_add(
-                Cost::triangle(true, false, false, false, DrawCount::default()),
-            );
-        }
+        let second = match fourth {
+            None => None,
+            Some(d) => {
+                let second = second_triangle(&tri, d);
+                if let Some(drawn) =
+                    draw_tiled_quad(&mut self.vram, &self.draw, &tri, &second, rows)
+                {
+                    // Both triangles' set-up; the pixels, each drawn by one of them, once.
+                    return Cost::triangle(false, false, false, false, drawn).saturating_add(
+                        Cost::triangle(true, false, false, false, DrawCount::default()),
+                    );
+                }
+                Some(second)
+            }
+        };
         let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
-        if let Some(second) = &packet_second {
+        if let Some(second) = &second {
             let drawn =
                 draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, second, rows);
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
@@ -796,9 +806,9 @@ mod tests {
             let mut p = words;
             p[0] = op << 24 | (p[0] & 0xFF_FFFF);
             let expected = polygon_packet(&p, &g.draw, allowed);
-            let (first, second) = g.decode_polygon(&p);
+            let (first, fourth) = g.decode_polygon(&p);
             prop_assert_eq!(first, expected.first);
-            prop_assert_eq!(second, expected.second);
+            prop_assert_eq!(fourth.map(|d| second_triangle(&first, d)), expected.second);
             prop_assert_eq!(g.draw.mode, expected.mode);
         }
     }
