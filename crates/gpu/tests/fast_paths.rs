@@ -471,6 +471,21 @@ proptest! {
         raw15_identity_window_case(&pts, (page_x, page_y), semi_mode, Mask { set, check }, seed)?;
     }
 
+    /// [`page_addressed_groups_case`]: modulated textured triangles drawn eight pixels at a
+    /// time (opaque, no mask check), on lines 260-499 with their page on lines 0-255 of any
+    /// page column, so that 8-bit and 15-bit pages from page X 15 and 13 on wrap past x 1023.
+    #[test]
+    fn page_addressed_groups_match_the_window_path(
+        pts in prop::collection::vec((-40i32..560, 260i32..500, any::<[u8; 2]>()), 3),
+        (depth, page_x) in (0u32..3, 0u32..16),
+        (gouraud, dither) in any::<(bool, bool)>(),
+        shades in prop::collection::vec(color(), 3),
+        clut in (0u32..48, 0u32..256),
+        seed in any::<u64>(),
+    ) {
+        page_addressed_groups_case(&pts, (depth, page_x), (gouraud, dither), &shades, clut, seed)?;
+    }
+
     /// Rectangles (GP0 60h-7Fh): variable size (W & 3FFh by H & 1FFh), 1x1, 8x8, 16x16;
     /// untextured or 4/8/15-bit textured, raw or modulated, opaque or semi-transparent, with
     /// the E1h X/Y flips and the E2h window. Pixel (x0 + i, y0 + j) inside the drawing area
@@ -679,6 +694,56 @@ fn raw15_identity_window_case(
             let attr = if i == 1 { texpage << 16 } else { 0 };
             words.push(xy(p.0, p.1));
             words.push((p.2[0] & 0x7F) as u32 | ((p.2[1] & 0x7F) as u32) << 8 | attr);
+        }
+        g.gp0_words(&words);
+        g.vram().clone()
+    };
+    // E2h mask X and Y = 10h (texel bit 7), offsets 0.
+    let (direct, windowed) = (draw(0), draw(0x10 | 0x10 << 5));
+    prop_assert!(
+        direct == windowed,
+        "{}",
+        difference(&direct, &windowed, &windowed)
+    );
+    Ok(())
+}
+
+/// A modulated 4/8/15-bit triangle (GP0 24h or 34h) whose UVs stay below 128 samples the same
+/// texels under the identity window and under a window that masks texel X and Y bit 7 (§7):
+/// the first has its eight texel addresses of a group computed together when its page lies
+/// inside VRAM, and must leave the same VRAM as the second, which goes through the window
+/// (and wraps past x 1023) texel by texel. The CLUT sits on lines 0-255, clear of the drawing.
+fn page_addressed_groups_case(
+    pts: &[(i32, i32, [u8; 2])],
+    (depth, page_x): (u32, u32),
+    (gouraud, dither): (bool, bool),
+    shades: &[[u8; 3]],
+    (clut_x, clut_y): (u32, u32),
+    seed: u64,
+) -> Result<(), TestCaseError> {
+    let draw = |window: u32| {
+        let (mut g, _) = gpu_with_background(seed);
+        g.gp0_words(&[
+            0xE100_0000 | (dither as u32) << 9,
+            0xE300_0000,
+            0xE400_0000 | 1023 | 511 << 10,
+            0xE500_0000,
+        ]);
+        g.gp0(0xE200_0000 | window);
+        let texpage = page_x | depth << 7;
+        let cmd = 0x24 | (gouraud as u32) << 4;
+        let mut words = vec![cmd << 24 | rgb_word(shades[0])];
+        for (i, p) in pts.iter().enumerate() {
+            let attr = match i {
+                0 => clut_x | clut_y << 6,
+                1 => texpage,
+                _ => 0,
+            };
+            if i > 0 && gouraud {
+                words.push(rgb_word(shades[i]));
+            }
+            words.push(xy(p.0, p.1));
+            words.push((p.2[0] & 0x7F) as u32 | ((p.2[1] & 0x7F) as u32) << 8 | attr << 16);
         }
         g.gp0_words(&words);
         g.vram().clone()

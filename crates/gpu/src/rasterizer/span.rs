@@ -74,9 +74,11 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep their bit 15
 /// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
 /// untextured one its first and last four, two or one, a textured one pixel by pixel.
+/// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
+/// wrapping (see [`plain_page`]), so the eight texel addresses are computed together.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
+pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const PLAIN: bool>(
     vram: &mut [u16; VRAM_LEN],
     row: usize,
     y: i32,
@@ -98,7 +100,7 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
         i16x8::ZERO
     };
     let group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
-        Group::<TEX, GOURAUD>::shade(vram, env, flat, mask_or, dither, lanes, n)
+        Group::<TEX, GOURAUD, PLAIN>::shade(vram, env, flat, mask_or, dither, lanes, n)
     };
     let put = put::<TEX>;
     // Attribute `i` of pixel `x + k` in lane `k`.
@@ -132,10 +134,10 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
     }
 }
 
-/// One group of eight pixels of a span.
-struct Group<const TEX: u8, const GOURAUD: bool>;
+/// One group of eight pixels of a span; `PLAIN` as for [`draw`].
+struct Group<const TEX: u8, const GOURAUD: bool, const PLAIN: bool>;
 
-impl<const TEX: u8, const GOURAUD: bool> Group<TEX, GOURAUD> {
+impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool> Group<TEX, GOURAUD, PLAIN> {
     /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
     /// their values and their texels (0 past the first `n`, which are not fetched).
     #[inline(always)]
@@ -156,7 +158,28 @@ impl<const TEX: u8, const GOURAUD: bool> Group<TEX, GOURAUD> {
             flat
         };
         let mut texel = [0u16; LANES];
-        if textured {
+        if textured && PLAIN {
+            // The halfword holding texel (u, v) is `page + v * 1024 + u / 4` (4-bit),
+            // `u / 2` (8-bit) or `u` (15-bit), the texel at bit `(u % 4) * 4` or
+            // `(u % 2) * 8` of it (docs/hardware/gpu.md §7).
+            let s = &env.sampler;
+            let (u, v) = (lanes[3] >> 24, lanes[4] >> 24);
+            let base = u32x8::splat((s.page_y * crate::VRAM_WIDTH + s.page_x) as u32) + (v << 10);
+            let (address, shift): (u32x8, u32x8) = match TEX {
+                1 => (base + (u >> 2), (u & u32x8::splat(3)) << 2),
+                2 => (base + (u >> 1), (u & u32x8::splat(1)) << 3),
+                _ => (base + u, u32x8::ZERO),
+            };
+            let (address, shift) = (address.to_array(), shift.to_array());
+            for (k, t) in texel.iter_mut().enumerate().take(n) {
+                let word = vram[address[k] as usize & (VRAM_LEN - 1)];
+                *t = match TEX {
+                    1 => s.clut[usize::from((word >> shift[k]) & 0xF)],
+                    2 => s.clut[usize::from((word >> shift[k]) & 0xFF)],
+                    _ => word,
+                };
+            }
+        } else if textured {
             let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
                 *t = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
@@ -234,6 +257,22 @@ fn put<const TEX: u8>(vram: &mut [u16; VRAM_LEN], start: usize, out: u16x8, t: i
             out.to_array()
         };
     }
+}
+
+/// Whether a page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) is read without the
+/// window or wrapping changing an address: the window is the identity, and the page's 64,
+/// 128 or 256 halfwords and 256 lines lie inside VRAM (docs/hardware/gpu.md §7). Its texel
+/// (u, v) is then in the halfword `page_y * 1024 + page_x + v * 1024 + u / 4` (4-bit), `+ u
+/// / 2` (8-bit) or `+ u` (15-bit).
+pub(super) fn plain_page(sampler: &crate::texture::Sampler, tex: u8) -> bool {
+    let width = match tex {
+        1 => 64,
+        2 => 128,
+        _ => 256,
+    };
+    sampler.window_is_identity()
+        && sampler.page_x + width <= crate::VRAM_WIDTH
+        && sampler.page_y + 256 <= 512
 }
 
 /// Whether the VRAM a texture page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) can be

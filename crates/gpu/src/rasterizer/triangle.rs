@@ -353,7 +353,13 @@ impl GroupRows {
     /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
     /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
-    fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const CLIP: bool>(
+    fn draw<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const DITHER: bool,
+        const CLIP: bool,
+        const PLAIN: bool,
+    >(
         self,
         vram: &mut [u16; VRAM_LEN],
         step: [u32; 5],
@@ -389,7 +395,7 @@ impl GroupRows {
                     attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
                 });
                 if TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS {
-                    span::draw::<TEX, GOURAUD, DITHER>(
+                    span::draw::<TEX, GOURAUD, DITHER, PLAIN>(
                         vram, row, y, x_start, x_end, acc, lanes, flat, env,
                     );
                 } else {
@@ -602,10 +608,22 @@ pub(super) fn draw_inline<
             // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
             // inside the area's columns need no clip.
             let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
-            drawn.pixels += if inside {
-                walk.draw::<TEX, GOURAUD, DITHER, false>(vram, step, flat, &env)
-            } else {
-                walk.draw::<TEX, GOURAUD, DITHER, true>(vram, step, flat, &env)
+            // A page the window and wrapping leave alone has its texel addresses computed
+            // eight at a time (see `span::plain_page`).
+            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX);
+            drawn.pixels += match (inside, plain) {
+                (true, false) => {
+                    walk.draw::<TEX, GOURAUD, DITHER, false, false>(vram, step, flat, &env)
+                }
+                (false, false) => {
+                    walk.draw::<TEX, GOURAUD, DITHER, true, false>(vram, step, flat, &env)
+                }
+                (true, true) => {
+                    walk.draw::<TEX, GOURAUD, DITHER, false, true>(vram, step, flat, &env)
+                }
+                (false, true) => {
+                    walk.draw::<TEX, GOURAUD, DITHER, true, true>(vram, step, flat, &env)
+                }
             };
             continue;
         }
