@@ -7,8 +7,40 @@ use super::{
 };
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
+use crate::state::BlendMode;
 use crate::state::DrawState;
 use crate::{VRAM_LEN, VRAM_WIDTH};
+
+/// `$body` with `$mode` bound to the blend mode `$value`: when `$blend` (a const parameter)
+/// is set, in one copy per mode with the mode a constant, so that a pixel loop inlined into
+/// `$body` does not choose its blend function per pixel (docs/hardware/gpu.md §6).
+macro_rules! with_blend_mode {
+    ($blend:expr, $value:expr, $mode:ident => $body:expr) => {
+        if $blend {
+            match $value {
+                BlendMode::Average => {
+                    let $mode = BlendMode::Average;
+                    $body
+                }
+                BlendMode::Add => {
+                    let $mode = BlendMode::Add;
+                    $body
+                }
+                BlendMode::Subtract => {
+                    let $mode = BlendMode::Subtract;
+                    $body
+                }
+                BlendMode::AddQuarter => {
+                    let $mode = BlendMode::AddQuarter;
+                    $body
+                }
+            }
+        } else {
+            let $mode = $value;
+            $body
+        }
+    };
+}
 
 #[derive(Clone, Copy, Default)]
 struct Vtx {
@@ -778,12 +810,28 @@ static NO_CELLS: [[u32; 16]; 4] = [[0; 16]; 4];
 #[inline(always)]
 fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
     vram: &mut [u16; VRAM_LEN],
+    span: (usize, i32, i32),
+    uv: (u32, u32),
+    duv: (u32, u32),
+    page: usize,
+    tables: (&[[u32; 16]; 4], &[u32; 16]),
+    (mask_or, blend): (u16, BlendMode),
+) {
+    with_blend_mode!(BLEND, blend, mode => {
+        clut4_pixels::<BLEND, MASK_CHECK, CELLS>(vram, span, uv, duv, page, tables, (mask_or, mode))
+    });
+}
+
+/// [`clut4_span`]'s pixel loop, for one blend mode.
+#[inline(always)]
+fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+    vram: &mut [u16; VRAM_LEN],
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
     page: usize,
     (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
-    (mask_or, blend): (u16, crate::state::BlendMode),
+    (mask_or, blend): (u16, BlendMode),
 ) {
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
@@ -804,11 +852,26 @@ fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
 #[inline(always)]
 fn raw15_span<const BLEND: bool, const MASK_CHECK: bool>(
     vram: &mut [u16; VRAM_LEN],
+    span: (usize, i32, i32),
+    uv: (u32, u32),
+    duv: (u32, u32),
+    page: usize,
+    (mask_or, blend): (u16, BlendMode),
+) {
+    with_blend_mode!(BLEND, blend, mode => {
+        raw15_pixels::<BLEND, MASK_CHECK>(vram, span, uv, duv, page, (mask_or, mode))
+    });
+}
+
+/// [`raw15_span`]'s pixel loop, for one blend mode.
+#[inline(always)]
+fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
     page: usize,
-    (mask_or, blend): (u16, crate::state::BlendMode),
+    (mask_or, blend): (u16, BlendMode),
 ) {
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
