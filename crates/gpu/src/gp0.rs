@@ -594,12 +594,15 @@ impl Gpu {
     /// written into the draw mode in place (docs/hardware/gpu.md §2), and the vertices are
     /// decoded from fixed word positions. Returns the first triangle and a quad's fourth
     /// vertex; [`second_triangle`] makes the quad's second triangle from them.
+    /// `GOURAUD`, `QUAD` and `UV` are the command's bits 28, 27 and 26, so that each
+    /// word's position is a constant.
     #[inline(always)]
-    fn decode_polygon(&mut self, p: &[u32]) -> (Triangle, Option<Vertex>) {
+    fn decode_polygon<const GOURAUD: bool, const QUAD: bool, const UV: bool>(
+        &mut self,
+        p: &[u32; MAX_PACKET],
+    ) -> (Triangle, Option<Vertex>) {
         let cmd = p[0];
-        let gouraud = cmd & (1 << 28) != 0;
-        let quad = cmd & (1 << 27) != 0;
-        let has_uv = cmd & (1 << 26) != 0;
+        let (gouraud, quad, has_uv) = (GOURAUD, QUAD, UV);
         let semi = cmd & (1 << 25) != 0;
         let raw = cmd & (1 << 24) != 0;
         // Vertex n > 0 starts with its colour word when Gouraud; position, then UV word.
@@ -647,13 +650,46 @@ impl Gpu {
         (first, fourth)
     }
 
-    /// Execute a polygon packet, `p` holding at least its words; returns its cost in draw
-    /// units.
-    fn polygon(&mut self, p: &[u32]) -> u32 {
-        let cmd = p.first().copied().unwrap_or(0);
-        let gouraud = cmd & (1 << 28) != 0;
+    /// [`Gpu::decode_polygon`] for any polygon command: the packet's shape from its bits
+    /// 26-28.
+    #[cfg(test)]
+    fn decode_any_polygon(&mut self, p: &[u32; MAX_PACKET]) -> (Triangle, Option<Vertex>) {
+        match (p[0] >> 26) & 7 {
+            0 => self.decode_polygon::<false, false, false>(p),
+            1 => self.decode_polygon::<false, false, true>(p),
+            2 => self.decode_polygon::<false, true, false>(p),
+            3 => self.decode_polygon::<false, true, true>(p),
+            4 => self.decode_polygon::<true, false, false>(p),
+            5 => self.decode_polygon::<true, false, true>(p),
+            6 => self.decode_polygon::<true, true, false>(p),
+            _ => self.decode_polygon::<true, true, true>(p),
+        }
+    }
+
+    /// Execute a polygon packet; returns its cost in draw units. The packet's shape
+    /// (Gouraud, quad, textured: bits 28, 27, 26) chooses one copy of the routine.
+    fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        match (p[0] >> 26) & 7 {
+            0 => self.polygon_as::<false, false, false>(p),
+            1 => self.polygon_as::<false, false, true>(p),
+            2 => self.polygon_as::<false, true, false>(p),
+            3 => self.polygon_as::<false, true, true>(p),
+            4 => self.polygon_as::<true, false, false>(p),
+            5 => self.polygon_as::<true, false, true>(p),
+            6 => self.polygon_as::<true, true, false>(p),
+            _ => self.polygon_as::<true, true, true>(p),
+        }
+    }
+
+    /// [`Gpu::polygon`] for a packet of the shape the const parameters give.
+    fn polygon_as<const GOURAUD: bool, const QUAD: bool, const UV: bool>(
+        &mut self,
+        p: &[u32; MAX_PACKET],
+    ) -> u32 {
+        let cmd = p[0];
+        let gouraud = GOURAUD;
         let semi = cmd & (1 << 25) != 0;
-        let (tri, fourth) = self.decode_polygon(p);
+        let (tri, fourth) = self.decode_polygon::<GOURAUD, QUAD, UV>(p);
         let textured = tri.texture.is_some();
         let clut_units = tri
             .texture
@@ -806,7 +842,7 @@ mod tests {
             let mut p = words;
             p[0] = op << 24 | (p[0] & 0xFF_FFFF);
             let expected = polygon_packet(&p, &g.draw, allowed);
-            let (first, fourth) = g.decode_polygon(&p);
+            let (first, fourth) = g.decode_any_polygon(&p);
             prop_assert_eq!(first, expected.first);
             prop_assert_eq!(fourth.map(|d| second_triangle(&first, d)), expected.second);
             prop_assert_eq!(g.draw.mode, expected.mode);

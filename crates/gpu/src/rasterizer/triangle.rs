@@ -532,7 +532,7 @@ pub(super) fn draw_inline<
     let (order, core_vertex, setup) = setup(corners);
     // `order` holds 0, 1 and 2: `% 3` changes no index and leaves no panic path.
     let vertex = |k: usize| vtx(&tri.vertices[k % 3]);
-    let v = order.map(vertex);
+    let v = [vertex(order[0]), vertex(order[1]), vertex(order[2])];
     let (a, b, c) = (v[0], v[1], v[2]);
     let cv = vertex(core_vertex);
     let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
