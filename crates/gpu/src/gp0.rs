@@ -496,11 +496,10 @@ impl Gpu {
             }
             self.execute(block)
         } else {
-            let mut packet = self.gp0.buf;
-            for (b, &w) in packet.iter_mut().zip(words).take(n) {
-                *b = w;
+            if let (Some(buf), Some(packet)) = (self.gp0.buf.get_mut(..n), words.get(..n)) {
+                buf.copy_from_slice(packet);
             }
-            self.gp0.buf = packet;
+            let packet = self.gp0.buf;
             self.execute(&packet)
         };
         // Executing a packet leaves the drawing side as it was: the words are received and
