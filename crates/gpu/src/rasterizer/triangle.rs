@@ -86,37 +86,33 @@ struct Part {
     right: Edge,
 }
 
-/// A triangle's edges, anchored as its core vertex decides (docs/hardware/gpu.md §3.3-§3.4).
+/// A triangle's core vertex and edges (docs/hardware/gpu.md §3.3-§3.4).
 struct Setup {
+    /// Sorted position of the core vertex.
+    core: usize,
     /// Rows `[y0, y1)` bounded by v0->v1, then `[y1, y2)` bounded by v1->v2, each with the
     /// base edge v0->v2.
     parts: [Part; 2],
 }
 
-/// Core vertex, Y sort and edges (docs/hardware/gpu.md §3.3-§3.4) of the wrapped positions
-/// `p` of a triangle [`triangle_coverage`] draws (not collinear, so y0 < y2 and the gradient
-/// denominator is not 0). Returns the order that sorts the vertices by Y (`order[k]` is the
-/// vertex at sorted position `k`), the core vertex's index in `p`, and the set-up in sorted
-/// positions.
+/// Core vertex, Y sort and edges (docs/hardware/gpu.md §3.3-§3.4) of the vertices `v`, whose
+/// wrapped positions `at` gives, for a triangle [`triangle_coverage`] draws (not collinear, so
+/// y0 < y2 and the gradient denominator is not 0); returns them in sorted order with the
+/// set-up.
 #[inline(always)]
-fn setup(p: [(i32, i32); 3]) -> ([usize; 3], usize, Setup) {
+fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> ([T; 3], Setup) {
     // Core vertex from X before sorting (docs/hardware/gpu.md §3.3).
-    let core_vertex = if p[1].0 <= p[0].0 {
+    let p = v.each_ref().map(&at);
+    let mut core = if p[1].0 <= p[0].0 {
         if p[2].0 <= p[1].0 { 2 } else { 1 }
     } else if p[2].0 < p[0].0 {
         2
     } else {
         0
     };
-    // Y sort by three compare-exchanges, each only on a strict decrease, so that equal Ys
-    // keep their order. Only the indices and Ys move.
-    let mut order = [0usize, 1, 2];
-    let mut ys = [p[0].1, p[1].1, p[2].1];
-    let mut core = core_vertex;
     for (i, j) in [(1, 2), (0, 1), (1, 2)] {
-        if ys[j] < ys[i] {
-            ys.swap(i, j);
-            order.swap(i, j);
+        if at(&v[j]).1 < at(&v[i]).1 {
+            v.swap(i, j);
             if core == i {
                 core = j;
             } else if core == j {
@@ -124,12 +120,7 @@ fn setup(p: [(i32, i32); 3]) -> ([usize; 3], usize, Setup) {
             }
         }
     }
-    let at = |k: usize| match order[k] {
-        0 => p[0],
-        1 => p[1],
-        _ => p[2],
-    };
-    let [a, b, c] = [at(0), at(1), at(2)];
+    let [a, b, c] = v.each_ref().map(&at);
     let base_step = edge_step(c.0 - a.0, c.1 - a.1);
     let (upper_step, right_facing) = if b.1 == a.1 {
         (0, b.0 > a.0)
@@ -178,9 +169,9 @@ fn setup(p: [(i32, i32); 3]) -> ([usize; 3], usize, Setup) {
         }
     };
     (
-        order,
-        core_vertex,
+        v,
         Setup {
+            core,
             parts: [
                 part(a.1, b.1, upper_anchor, upper_step),
                 part(b.1, c.1, lower_anchor, lower_step),
@@ -254,7 +245,7 @@ pub(super) fn draw_flat(
     if let Coverage::Dropped(_) = triangle_coverage(p, &state.area) {
         return drawn;
     }
-    let (_, _, setup) = setup(p);
+    let (_, setup) = setup(p, |&p| p);
     let area = state.area;
     let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
     let clip = (area.left as i32, area.right as i32 + 1);
@@ -512,7 +503,7 @@ pub(super) fn draw_inline<
         return draw_flat(vram, state, p, color, env.line, rows);
     }
     let mut drawn = DrawCount::default();
-    let vtx = |p: &crate::primitive::Vertex| Vtx {
+    let verts = tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
@@ -522,19 +513,20 @@ pub(super) fn draw_inline<
             p.u as i32,
             p.v as i32,
         ],
-    };
+    });
     // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
-    let corners = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
+    let corners = verts.map(|v| (v.x, v.y));
     if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
         return drawn;
     }
-    // The vertices in Y order and the core vertex, read from the triangle by index.
-    let (order, core_vertex, setup) = setup(corners);
-    // `order` holds 0, 1 and 2: `% 3` changes no index and leaves no panic path.
-    let vertex = |k: usize| vtx(&tri.vertices[k % 3]);
-    let v = [vertex(order[0]), vertex(order[1]), vertex(order[2])];
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
     let (a, b, c) = (v[0], v[1], v[2]);
-    let cv = vertex(core_vertex);
+    // A select, not an index: the sorted vertices then stay in registers.
+    let cv = match setup.core {
+        0 => a,
+        1 => b,
+        _ => c,
+    };
     let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
     // Attribute set-up: 0-2 colour, 3-4 UV.
     let mut grads = [(0u32, 0u32); 5];
