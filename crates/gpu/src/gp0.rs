@@ -12,6 +12,23 @@ use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
 use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
+/// `$self.$f::<GOURAUD, QUAD, UV>($args)` with the polygon command word `$cmd`'s bits 28,
+/// 27 and 26 as the const arguments (docs/hardware/gpu.md §2).
+macro_rules! by_polygon_shape {
+    ($cmd:expr, $self:ident . $f:ident ($($arg:expr),*)) => {
+        match ($cmd >> 26) & 7 {
+            0 => $self.$f::<false, false, false>($($arg),*),
+            1 => $self.$f::<false, false, true>($($arg),*),
+            2 => $self.$f::<false, true, false>($($arg),*),
+            3 => $self.$f::<false, true, true>($($arg),*),
+            4 => $self.$f::<true, false, false>($($arg),*),
+            5 => $self.$f::<true, false, true>($($arg),*),
+            6 => $self.$f::<true, true, false>($($arg),*),
+            _ => $self.$f::<true, true, true>($($arg),*),
+        }
+    };
+}
+
 /// The longest fixed-size packet: a Gouraud textured quad, 12 words.
 pub(crate) const MAX_PACKET: usize = 12;
 
@@ -653,31 +670,13 @@ impl Gpu {
     /// 26-28.
     #[cfg(test)]
     fn decode_any_polygon(&mut self, p: &[u32; MAX_PACKET]) -> (Triangle, Option<Vertex>) {
-        match (p[0] >> 26) & 7 {
-            0 => self.decode_polygon::<false, false, false>(p),
-            1 => self.decode_polygon::<false, false, true>(p),
-            2 => self.decode_polygon::<false, true, false>(p),
-            3 => self.decode_polygon::<false, true, true>(p),
-            4 => self.decode_polygon::<true, false, false>(p),
-            5 => self.decode_polygon::<true, false, true>(p),
-            6 => self.decode_polygon::<true, true, false>(p),
-            _ => self.decode_polygon::<true, true, true>(p),
-        }
+        by_polygon_shape!(p[0], self.decode_polygon(p))
     }
 
     /// Execute a polygon packet; returns its cost in draw units. The packet's shape
     /// (Gouraud, quad, textured: bits 28, 27, 26) chooses one copy of the routine.
     fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        match (p[0] >> 26) & 7 {
-            0 => self.polygon_as::<false, false, false>(p),
-            1 => self.polygon_as::<false, false, true>(p),
-            2 => self.polygon_as::<false, true, false>(p),
-            3 => self.polygon_as::<false, true, true>(p),
-            4 => self.polygon_as::<true, false, false>(p),
-            5 => self.polygon_as::<true, false, true>(p),
-            6 => self.polygon_as::<true, true, false>(p),
-            _ => self.polygon_as::<true, true, true>(p),
-        }
+        by_polygon_shape!(p[0], self.polygon_as(p))
     }
 
     /// [`Gpu::polygon`] for a packet of the shape the const parameters give.

@@ -698,14 +698,7 @@ fn raw15_identity_window_case(
         g.gp0_words(&words);
         g.vram().clone()
     };
-    // E2h mask X and Y = 10h (texel bit 7), offsets 0.
-    let (direct, windowed) = (draw(0), draw(0x10 | 0x10 << 5));
-    prop_assert!(
-        direct == windowed,
-        "{}",
-        difference(&direct, &windowed, &windowed)
-    );
-    Ok(())
+    same_under_bit7_window(draw)
 }
 
 /// A modulated 4/8/15-bit triangle (GP0 24h or 34h) whose UVs stay below 128 samples the same
@@ -748,7 +741,13 @@ fn page_addressed_groups_case(
         g.gp0_words(&words);
         g.vram().clone()
     };
-    // E2h mask X and Y = 10h (texel bit 7), offsets 0.
+    same_under_bit7_window(draw)
+}
+
+/// `draw(E2h window bits)` leaves the same VRAM under the identity window and under the
+/// window that masks texel X and Y bit 7 (E2h mask X and Y = 10h, offsets 0; §7): for UVs
+/// below 128 the two sample the same texels.
+fn same_under_bit7_window(draw: impl Fn(u32) -> Vram) -> Result<(), TestCaseError> {
     let (direct, windowed) = (draw(0), draw(0x10 | 0x10 << 5));
     prop_assert!(
         direct == windowed,

@@ -18,28 +18,21 @@ macro_rules! with_blend_mode {
     ($blend:expr, $value:expr, $mode:ident => $body:expr) => {
         if $blend {
             match $value {
-                BlendMode::Average => {
-                    let $mode = BlendMode::Average;
-                    $body
-                }
-                BlendMode::Add => {
-                    let $mode = BlendMode::Add;
-                    $body
-                }
-                BlendMode::Subtract => {
-                    let $mode = BlendMode::Subtract;
-                    $body
-                }
+                BlendMode::Average => with_blend_mode!(@as BlendMode::Average, $mode => $body),
+                BlendMode::Add => with_blend_mode!(@as BlendMode::Add, $mode => $body),
+                BlendMode::Subtract => with_blend_mode!(@as BlendMode::Subtract, $mode => $body),
                 BlendMode::AddQuarter => {
-                    let $mode = BlendMode::AddQuarter;
-                    $body
+                    with_blend_mode!(@as BlendMode::AddQuarter, $mode => $body)
                 }
             }
         } else {
-            let $mode = $value;
-            $body
+            with_blend_mode!(@as $value, $mode => $body)
         }
     };
+    (@as $constant:expr, $mode:ident => $body:expr) => {{
+        let $mode = $constant;
+        $body
+    }};
 }
 
 #[derive(Clone, Copy, Default)]
