@@ -75,7 +75,7 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
 /// untextured one its first and last four, two or one, a textured one pixel by pixel.
 /// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
-/// wrapping (see [`plain_page`]), so the eight texel addresses are computed together.
+/// wrapping ([`plain_page`]), so the eight texel addresses are computed together.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const PLAIN: bool>(
@@ -259,20 +259,27 @@ fn put<const TEX: u8>(vram: &mut [u16; VRAM_LEN], start: usize, out: u16x8, t: i
     }
 }
 
-/// Whether a page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) is read without the
-/// window or wrapping changing an address: the window is the identity, and the page's 64,
-/// 128 or 256 halfwords and 256 lines lie inside VRAM (docs/hardware/gpu.md §7). Its texel
-/// (u, v) is then in the halfword `page_y * 1024 + page_x + v * 1024 + u / 4` (4-bit), `+ u
-/// / 2` (8-bit) or `+ u` (15-bit).
-pub(super) fn plain_page(sampler: &crate::texture::Sampler, tex: u8) -> bool {
-    let width = match tex {
+/// The halfwords a texture page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) spans from
+/// its left edge: 64, 128 or 256 (docs/hardware/gpu.md §7).
+fn page_width(tex: u8) -> usize {
+    match tex {
         1 => 64,
         2 => 128,
         _ => 256,
-    };
-    sampler.window_is_identity()
-        && sampler.page_x + width <= crate::VRAM_WIDTH
-        && sampler.page_y + 256 <= 512
+    }
+}
+
+/// The page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) as a VRAM index when neither
+/// the window nor a wrap changes a texel's address: the window is the identity, and the
+/// page's 64, 128 or 256 halfwords and 256 lines lie inside VRAM (docs/hardware/gpu.md §7).
+/// Texel (u, v) is then in the halfword at this index plus `v * 1024 + u / 4` (4-bit),
+/// `u / 2` (8-bit) or `u` (15-bit).
+#[inline(always)]
+pub(super) fn plain_page(sampler: &crate::texture::Sampler, tex: u8) -> Option<usize> {
+    (sampler.window_is_identity()
+        && sampler.page_x + page_width(tex) <= crate::VRAM_WIDTH
+        && sampler.page_y + 256 <= 512)
+        .then_some(sampler.page_y * crate::VRAM_WIDTH + sampler.page_x)
 }
 
 /// Whether the VRAM a texture page of kind `tex` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit) can be
@@ -287,11 +294,7 @@ pub(super) fn texture_clear_of(
     (x0, x1): (i32, i32),
     (y0, y1): (i32, i32),
 ) -> bool {
-    let width = match tex {
-        1 => 64,
-        2 => 128,
-        _ => 256,
-    };
+    let width = page_width(tex);
     let overlaps = |start: usize, len: usize, modulus: usize, lo: i32, hi: i32| {
         let (lo, hi) = (lo.max(0) as usize, hi.max(0) as usize);
         let s = start % modulus;

@@ -564,25 +564,19 @@ pub(super) fn draw_inline<
                 (a.y.max(clip_top), c.y.min(clip_bottom)),
             )
         });
-    // A 4-bit page under the identity window whose 64 halfwords and 256 lines lie inside
-    // VRAM without wrapping: texel (u, v) is the halfword at this index plus v * 1024 + u / 4.
-    let plain_page = (TEX == 1 && env.sampler.window_is_identity()).then(|| {
-        let s = &env.sampler;
-        s.page_y * VRAM_WIDTH + s.page_x
-    });
-    let plain_page = plain_page.filter(|_| {
-        let s = &env.sampler;
-        s.page_x + 64 <= VRAM_WIDTH && s.page_y + 256 <= 512
-    });
-    // Likewise a raw 15-bit page of 256 halfwords and 256 lines: texel (u, v) is the
-    // halfword at this index plus v * 1024 + u.
-    let raw15_page = (TEX == 3 && RAW && env.sampler.window_is_identity())
-        .then(|| {
-            let s = &env.sampler;
-            (s.page_x + 256 <= VRAM_WIDTH && s.page_y + 256 <= 512)
-                .then_some(s.page_y * VRAM_WIDTH + s.page_x)
-        })
-        .flatten();
+    // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or raw
+    // 15-bit span reads texel (u, v) from the halfword at its index plus v * 1024 + u / 4 or
+    // + u, and eight-pixel groups compute their eight texel addresses together.
+    let plain_page = if TEX == 1 {
+        span::plain_page(&env.sampler, TEX)
+    } else {
+        None
+    };
+    let raw15_page = if TEX == 3 && RAW {
+        span::plain_page(&env.sampler, TEX)
+    } else {
+        None
+    };
 
     let stride = match rows {
         super::Rows::All => 1,
@@ -625,9 +619,7 @@ pub(super) fn draw_inline<
             // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
             // inside the area's columns need no clip.
             let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
-            // A page the window and wrapping leave alone has its texel addresses computed
-            // eight at a time (see `span::plain_page`).
-            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX);
+            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
             drawn.pixels += match (inside, plain) {
                 (true, false) => {
                     walk.draw::<TEX, GOURAUD, DITHER, false, false>(vram, step, flat, &env)
