@@ -27,22 +27,44 @@ pub struct ClutCache {
 /// coded as [`crate::rasterizer::shaded_clut4`] codes them.
 pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
 
-/// The cached [`DitheredCells`] and the colour they were shaded with (`None`: not valid).
-#[derive(Clone, Default)]
+/// The cached [`DitheredCells`] and the colour they were shaded with. Colours are kept as
+/// [`color_key`] words, [`NO_COLOR`] for none.
+#[derive(Clone)]
 struct DitheredClut4 {
-    color: Option<[u8; 3]>,
+    /// The colour `cells` were shaded for, or [`NO_COLOR`] (not valid).
+    color: u32,
     /// The colour the previous request asked for, and how many requests in a row asked for
     /// it: the third primitive in a row with one colour has the table shaded, whatever its
     /// size (the two triangles of one quad alone do not).
-    requested: Option<[u8; 3]>,
+    requested: u32,
     run: u8,
     cells: DitheredCells,
+}
+
+impl Default for DitheredClut4 {
+    fn default() -> Self {
+        Self {
+            color: NO_COLOR,
+            requested: NO_COLOR,
+            run: 0,
+            cells: [[[0; 16]; 4]; 4],
+        }
+    }
+}
+
+/// A colour key no 8-bit RGB colour has.
+const NO_COLOR: u32 = u32::MAX;
+
+/// An 8-bit RGB colour as one word, R in bits 0-7, G 8-15, B 16-23.
+#[inline(always)]
+fn color_key([r, g, b]: [u8; 3]) -> u32 {
+    u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
 }
 
 impl core::fmt::Debug for DitheredClut4 {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("DitheredClut4")
-            .field("color", &self.color)
+            .field("color", &(self.color != NO_COLOR).then_some(self.color))
             .finish_non_exhaustive()
     }
 }
@@ -63,7 +85,7 @@ impl ClutCache {
     pub fn invalidate(&mut self) {
         self.key = None;
         self.loaded_8bit = false;
-        self.dithered.color = None;
+        self.dithered.color = NO_COLOR;
     }
 
     /// A latched CLUT position is one a CLUT attribute can give: X a multiple of 16 up to
@@ -116,7 +138,7 @@ impl ClutCache {
             }
             self.key = Some(key);
             self.loaded_8bit = needs_8bit;
-            self.dithered.color = None;
+            self.dithered.color = NO_COLOR;
         }
         &self.entries
     }
@@ -134,16 +156,18 @@ impl ClutCache {
     ) -> (&[u16; 256], Option<&DitheredCells>) {
         self.latch(vram, texture);
         let d = &mut self.dithered;
-        d.run = if d.requested.replace(rgb) == Some(rgb) {
+        let key = color_key(rgb);
+        d.run = if d.requested == key {
             d.run.saturating_add(1)
         } else {
             1
         };
-        if d.color != Some(rgb) && (d.run >= 3 || build()) {
+        d.requested = key;
+        if d.color != key && (d.run >= 3 || build()) {
             crate::rasterizer::dithered_clut4(&self.entries, rgb, &mut d.cells);
-            d.color = Some(rgb);
+            d.color = key;
         }
-        let cells = (d.color == Some(rgb)).then_some(&d.cells);
+        let cells = (d.color == key).then_some(&d.cells);
         (&self.entries, cells)
     }
 }

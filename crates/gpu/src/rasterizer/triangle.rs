@@ -496,15 +496,18 @@ pub(super) fn draw_inline<
         return draw_flat(vram, state, p, color, env.line, rows);
     }
     let mut drawn = DrawCount::default();
+    // Attributes the pipeline does not interpolate are 0, so that the Y sort does not
+    // carry them.
+    let (shaded, textured) = (GOURAUD, TEX != TEX_NONE);
     let verts = tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
-            p.color[0] as i32,
-            p.color[1] as i32,
-            p.color[2] as i32,
-            p.u as i32,
-            p.v as i32,
+            if shaded { p.color[0] as i32 } else { 0 },
+            if shaded { p.color[1] as i32 } else { 0 },
+            if shaded { p.color[2] as i32 } else { 0 },
+            if textured { p.u as i32 } else { 0 },
+            if textured { p.v as i32 } else { 0 },
         ],
     });
     // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
