@@ -176,6 +176,7 @@ impl OrderingTable {
     /// Link a GP0 packet at entry `index`: its words are copied into the primitive buffer and
     /// its node becomes the entry's first, so packets at one index come out
     /// most-recent-first (docs/hardware/gpu.md §2).
+    #[inline]
     pub fn insert(&mut self, index: usize, packet: &[u32]) -> Result<(), OtError> {
         if index >= self.depth {
             return Err(OtError::IndexOutOfRange {

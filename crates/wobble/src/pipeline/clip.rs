@@ -4,7 +4,6 @@
 //! pixels to the drawing area).
 
 use gte::Flag;
-use gte::typed::I4F12;
 
 /// FLAG bits that discard a polygon whole: SZ3 saturated (a vertex behind the camera, SZ
 /// clamped to 0), divide overflow (SZ3 <= H/2, too near), SX2/SY2 saturated (docs/hardware/gte.md §3,
@@ -24,13 +23,8 @@ pub(super) enum Verdict {
     Cull,
     /// Entirely outside the screen.
     Offscreen,
-    /// To be drawn: screen positions, screen Z and the larger side of its bounding box.
-    Draw {
-        xy: [(i16, i16); 4],
-        sz: [u16; 4],
-        ir0: I4F12,
-        extent: i32,
-    },
+    /// To be drawn: the larger side of its bounding box.
+    Draw { extent: i32 },
 }
 
 /// Screen bounding box (min x, max x, min y, max y) of three vertices.
@@ -53,15 +47,13 @@ fn gpu_drops((x0, x1, y0, y1): (i32, i32, i32, i32)) -> bool {
 }
 
 /// The verdict for a projected polygon: FLAG of its RTPT/RTPS, the NCLIP area of its
-/// first three vertices, screen positions (the fourth unused for a triangle), screen Z and
-/// the IR0 the last projection left, on a `w` x `h` screen.
+/// first three vertices and its screen positions (the fourth unused for a triangle), on a
+/// `w` x `h` screen.
 #[inline]
 pub(super) fn classify(
     flag: Flag,
     area: i32,
     xy: [(i16, i16); 4],
-    sz: [u16; 4],
-    ir0: I4F12,
     quad: bool,
     (w, h): (i32, i32),
 ) -> Verdict {
@@ -90,9 +82,6 @@ pub(super) fn classify(
         return Verdict::Drop(super::trace::DropCause::SizeLimit);
     }
     Verdict::Draw {
-        xy,
-        sz,
-        ir0,
         extent: (x1 - x0).max(y1 - y0),
     }
 }

@@ -224,18 +224,15 @@ fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
     }
 }
 
-/// Screen positions, screen Z and IR0 of a polygon to be drawn.
-type Drawn = ([(i16, i16); 4], [u16; 4], I4F12);
-
-/// Counts a polygon that is not drawn; returns the positions, screen Z and IR0 of one that is.
-fn drawn(verdict: Verdict, stats: &mut FrameStats) -> Option<Drawn> {
+/// Counts a polygon that is not drawn; whether it is drawn.
+fn drawn(verdict: Verdict, stats: &mut FrameStats) -> bool {
     match verdict {
         Verdict::Drop(_) => stats.dropped += 1,
         Verdict::Cull => stats.culled += 1,
         Verdict::Offscreen => stats.offscreen += 1,
-        Verdict::Draw { xy, sz, ir0, .. } => return Some((xy, sz, ir0)),
+        Verdict::Draw { .. } => return true,
     }
-    None
+    false
 }
 
 /// Vertex colours: NCCT/NCCS with a light, NCDT/NCDS with light and fog, DPCS with fog only.
@@ -465,8 +462,7 @@ impl Renderer {
                             Some(indices) => transform_shared(g, shared, indices, face.quad),
                             None => transform(g, face, options.subpixel),
                         };
-                        let verdict =
-                            classify(t.flag, t.area, t.xy, t.sz, t.ir0, face.quad, (w, h));
+                        let verdict = classify(t.flag, t.area, t.xy, face.quad, (w, h));
                         let split = level < prepared.level && needs_split(&verdict, split_extent);
                         if let Some(tr) = trace.as_deref_mut() {
                             let fate = match verdict {
@@ -492,9 +488,10 @@ impl Renderer {
                             break 'examine;
                         }
                         stats.polygons += 1;
-                        let Some((xy, sz, ir0)) = drawn(verdict, stats) else {
+                        if !drawn(verdict, stats) {
                             break 'examine;
-                        };
+                        }
+                        let (xy, sz, ir0) = (t.xy, t.sz, t.ir0);
                         if scratch.len() >= capacity {
                             stats.dropped += 1;
                             break 'examine;
@@ -695,7 +692,7 @@ mod tests {
             let (face, vertices, indices) = indexed(positions, normals, quad);
 
             let t = transform(&mut g, &face, false);
-            let verdict = classify(t.flag, t.area, t.xy, t.sz, t.ir0, quad, screen);
+            let verdict = classify(t.flag, t.area, t.xy, quad, screen);
             let color = light(&mut g, lighting, &face, base, t.ir0).map(rgb_word);
             let uv = face.v.map(|p| p.texel());
             let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None), uv).ot_index;
@@ -704,7 +701,7 @@ mod tests {
             project_shared(&mut g, &vertices, &mut shared);
             let s = transform_shared(&mut g, &shared, &indices, quad);
             prop_assert_eq!(
-                format!("{:?}", classify(s.flag, s.area, s.xy, s.sz, s.ir0, quad, screen)),
+                format!("{:?}", classify(s.flag, s.area, s.xy, quad, screen)),
                 format!("{verdict:?}")
             );
             prop_assert_eq!(s.area, t.area);
@@ -767,8 +764,8 @@ mod tests {
         );
         assert_eq!(s.ir0, t.ir0);
         let screen = (320, 240);
-        let a = classify(t.flag, t.area, t.xy, t.sz, t.ir0, false, screen);
-        let b = classify(s.flag, s.area, s.xy, s.sz, s.ir0, false, screen);
+        let a = classify(t.flag, t.area, t.xy, false, screen);
+        let b = classify(s.flag, s.area, s.xy, false, screen);
         assert!(matches!(a, Verdict::Draw { .. }), "{a:?}");
         assert_eq!(format!("{a:?}"), format!("{b:?}"));
     }
