@@ -222,7 +222,8 @@ impl<'a> Sampler<'a> {
     /// Whether the texture window leaves U and V as they are (mask 0).
     #[inline(always)]
     pub fn window_is_identity(&self) -> bool {
-        self.u_and == 0xFF && self.u_or == 0 && self.v_and == 0xFF && self.v_or == 0
+        // The four masks compared as one word.
+        u32::from_le_bytes([self.u_and, self.u_or, self.v_and, self.v_or]) == 0x00FF_00FF
     }
 
     /// The 4-bit texel index (a CLUT entry number) at (u, v), after the texture window; X

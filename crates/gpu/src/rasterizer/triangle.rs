@@ -813,14 +813,22 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
     (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
     (mask_or, blend): (u16, BlendMode),
 ) {
+    // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
+    let cells = cells.as_flattened();
+    let mut cell = ((x_start & 3) as usize) << 4;
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
         let word = vram[(page + tv * VRAM_WIDTH + (tu >> 2)) & (VRAM_LEN - 1)];
-        let table = if CELLS { &cells[(x & 3) as usize] } else { lut };
-        let e = table[usize::from((word >> ((tu & 3) * 4)) & 0xF)];
+        let texel = usize::from((word >> ((tu & 3) * 4)) & 0xF);
+        let e = if CELLS {
+            cells[(cell | texel) & 63]
+        } else {
+            lut[texel]
+        };
         super::write_shaded::<BLEND, MASK_CHECK>(vram, row + x as usize, e, mask_or, blend);
         u = u.wrapping_add(du);
         v = v.wrapping_add(dv);
+        cell = (cell + 16) & 48;
     }
 }
 

@@ -168,6 +168,16 @@ fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<Sha
     }));
 }
 
+/// What an index outside the projected vertices reads (none does: the indices are the
+/// object's own).
+static UNPROJECTED: SharedProjection = SharedProjection {
+    xy: (0, 0),
+    sxy: 0,
+    sz: 0,
+    ir0: I4F12::ZERO,
+    flag: Flag::EMPTY,
+};
+
 /// The RTPS command word (sf = 1, as [`Geometry::project`] issues it).
 const RTPS: u32 = gte::typed::command(gte::Opcode::Rtps);
 
@@ -197,7 +207,7 @@ fn transform_shared(
     };
     let mut sxy = [0u32; 3];
     for (k, &i) in indices.iter().enumerate().take(n) {
-        let v = shared.get(i as usize).copied().unwrap_or_default();
+        let v = shared.get(i as usize).unwrap_or(&UNPROJECTED);
         t.flag = t.flag.union(v.flag);
         t.xy[k] = v.xy;
         t.sz[k] = v.sz;
