@@ -198,16 +198,34 @@ fn takes_fifo_space(cmd: u32) -> bool {
     !matches!(cmd >> 24, 0x00 | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF)
 }
 
-/// Words in the packet a command word starts (docs/hardware/gpu.md §2).
+/// Words in the packet a command word starts (docs/hardware/gpu.md §2): a function of the
+/// command byte alone, looked up.
+#[inline(always)]
 pub(crate) fn packet_len(cmd: u32) -> usize {
-    let op = cmd >> 24;
+    usize::from(PACKET_LEN[(cmd >> 24) as usize])
+}
+
+/// [`packet_len`] of each command byte.
+static PACKET_LEN: [u8; 256] = {
+    let mut t = [0u8; 256];
+    let mut op = 0;
+    while op < 256 {
+        t[op] = packet_len_of(op as u32);
+        op += 1;
+    }
+    t
+};
+
+/// Words in the packet command byte `op` starts (docs/hardware/gpu.md §2).
+const fn packet_len_of(op: u32) -> u8 {
+    let cmd = op << 24;
     match op {
         0x02 => 3,
         0x20..=0x3F => {
             let verts = if cmd & (1 << 27) != 0 { 4 } else { 3 };
-            let per_vertex = 1 + (cmd >> 26 & 1) as usize;
+            let per_vertex = 1 + (cmd >> 26 & 1);
             let colors = if cmd & (1 << 28) != 0 { verts - 1 } else { 0 };
-            1 + verts * per_vertex + colors
+            (1 + verts * per_vertex + colors) as u8
         }
         0x40..=0x5F => {
             if cmd & (1 << 28) != 0 {
@@ -217,9 +235,9 @@ pub(crate) fn packet_len(cmd: u32) -> usize {
             }
         }
         0x60..=0x7F => {
-            let textured = (cmd >> 26 & 1) as usize;
-            let variable = usize::from((cmd >> 27) & 3 == 0);
-            2 + textured + variable
+            let textured = cmd >> 26 & 1;
+            let variable = ((cmd >> 27) & 3 == 0) as u32;
+            (2 + textured + variable) as u8
         }
         0x80..=0x9F => 4,
         0xA0..=0xDF => 3,
@@ -844,6 +862,51 @@ mod tests {
             prop_assert_eq!(first, expected.first);
             prop_assert_eq!(fourth.map(|d| second_triangle(&first, d)), expected.second);
             prop_assert_eq!(g.draw.mode, expected.mode);
+        }
+    }
+
+    /// Packet lengths as the fact sheet lists them (docs/hardware/gpu.md §2): polygons F3=4,
+    /// F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 whatever their semi-transparency and raw
+    /// bits; lines F2=3, G2=4 (a polyline's first segment the same); rectangles 2 plus the UV
+    /// word when textured plus the size word when variable; fill 3, VRAM copy 4, CPU
+    /// transfers 3; every other command one word.
+    #[test]
+    fn packet_lengths_match_the_fact_sheet() {
+        for low in 0..4u32 {
+            let polygons = [
+                (0x20, 4),
+                (0x28, 5),
+                (0x30, 6),
+                (0x38, 8),
+                (0x24, 7),
+                (0x2C, 9),
+                (0x34, 9),
+                (0x3C, 12),
+            ];
+            for (op, len) in polygons {
+                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
+            }
+            for (op, len) in [(0x40, 3), (0x48, 3), (0x50, 4), (0x58, 4)] {
+                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
+            }
+            let rectangles = [(0x60, 3), (0x64, 4), (0x68, 2), (0x6C, 3), (0x70, 2)];
+            for (op, len) in rectangles
+                .into_iter()
+                .chain([(0x74, 3), (0x78, 2), (0x7C, 3)])
+            {
+                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
+            }
+        }
+        for op in 0..=0xFFu32 {
+            let expected = match op {
+                0x02 => 3,
+                0x20..=0x7F => continue,
+                0x80..=0x9F => 4,
+                0xA0..=0xDF => 3,
+                _ => 1,
+            };
+            // The low 24 bits are parameters and never change the length.
+            assert_eq!(packet_len(op << 24 | 0xFF_FFFF), expected, "{op:02X}h");
         }
     }
 
