@@ -926,16 +926,7 @@ mod tests {
     #[test]
     fn command_lengths_follow_the_word_counts_of_section_2() {
         // F3=4, F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 (docs/hardware/gpu.md §2).
-        for (op, n) in [
-            (0x20, 4),
-            (0x28, 5),
-            (0x30, 6),
-            (0x38, 8),
-            (0x24, 7),
-            (0x2C, 9),
-            (0x34, 9),
-            (0x3C, 12),
-        ] {
+        for (op, n) in crate::gp0::POLYGON_WORDS {
             let words = [op << 24; 12];
             assert_eq!(command_len(&words), Ok(n), "op {op:02x}");
         }

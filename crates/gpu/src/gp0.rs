@@ -205,6 +205,20 @@ pub(crate) fn packet_len(cmd: u32) -> usize {
     usize::from(PACKET_LEN[(cmd >> 24) as usize])
 }
 
+/// The fact sheet's word counts of the polygon packets, F3, F4, G3, G4, FT3, FT4, GT3 and GT4
+/// (docs/hardware/gpu.md §2), by command byte.
+#[cfg(test)]
+pub(crate) const POLYGON_WORDS: [(u32, usize); 8] = [
+    (0x20, 4),
+    (0x28, 5),
+    (0x30, 6),
+    (0x38, 8),
+    (0x24, 7),
+    (0x2C, 9),
+    (0x34, 9),
+    (0x3C, 12),
+];
+
 /// [`packet_len`] of each command byte.
 static PACKET_LEN: [u8; 256] = {
     let mut t = [0u8; 256];
@@ -873,17 +887,7 @@ mod tests {
     #[test]
     fn packet_lengths_match_the_fact_sheet() {
         for low in 0..4u32 {
-            let polygons = [
-                (0x20, 4),
-                (0x28, 5),
-                (0x30, 6),
-                (0x38, 8),
-                (0x24, 7),
-                (0x2C, 9),
-                (0x34, 9),
-                (0x3C, 12),
-            ];
-            for (op, len) in polygons {
+            for (op, len) in POLYGON_WORDS {
                 assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
             }
             for (op, len) in [(0x40, 3), (0x48, 3), (0x50, 4), (0x58, 4)] {
