@@ -879,11 +879,11 @@ mod tests {
         }
     }
 
-    /// Packet lengths as the fact sheet lists them (docs/hardware/gpu.md §2): polygons F3=4,
-    /// F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 whatever their semi-transparency and raw
-    /// bits; lines F2=3, G2=4 (a polyline's first segment the same); rectangles 2 plus the UV
-    /// word when textured plus the size word when variable; fill 3, VRAM copy 4, CPU
-    /// transfers 3; every other command one word.
+    /// Packet lengths from the word layouts of docs/hardware/gpu.md §2: polygons F3=4, F4=5,
+    /// G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 whatever their semi-transparency and raw bits;
+    /// lines F2=3, G2=4 (a polyline's first segment the same); rectangles the command and
+    /// position words, plus the texture word when textured, plus the size word when variable;
+    /// fill 3, VRAM copy 4, CPU transfers 3; every other command one word.
     #[test]
     fn packet_lengths_match_the_fact_sheet() {
         for low in 0..4u32 {
