@@ -67,16 +67,34 @@ pub struct Gte {
     flag_bits: u32,
 }
 
-/// The opcode of each value of bits 0-5, as [`Opcode::from_bits`].
-const OPCODES: [Option<Opcode>; 64] = {
-    let mut table = [None; 64];
-    let mut bits = 0;
-    while bits < 64 {
-        table[bits] = Opcode::from_bits(bits as u32);
-        bits += 1;
-    }
-    table
-};
+/// Bits 0-5 of each defined command, as the patterns of [`Gte::execute`]'s dispatch: a match
+/// on the bits themselves compiles to one jump table over the 64 values, undefined ones
+/// included, with no lookup of the opcode first.
+mod opcode_bits {
+    use crate::Opcode;
+    pub(crate) const RTPS: u32 = Opcode::Rtps.bits();
+    pub(crate) const NCLIP: u32 = Opcode::Nclip.bits();
+    pub(crate) const OP: u32 = Opcode::Op.bits();
+    pub(crate) const DPCS: u32 = Opcode::Dpcs.bits();
+    pub(crate) const INTPL: u32 = Opcode::Intpl.bits();
+    pub(crate) const MVMVA: u32 = Opcode::Mvmva.bits();
+    pub(crate) const NCDS: u32 = Opcode::Ncds.bits();
+    pub(crate) const CDP: u32 = Opcode::Cdp.bits();
+    pub(crate) const NCDT: u32 = Opcode::Ncdt.bits();
+    pub(crate) const NCCS: u32 = Opcode::Nccs.bits();
+    pub(crate) const CC: u32 = Opcode::Cc.bits();
+    pub(crate) const NCS: u32 = Opcode::Ncs.bits();
+    pub(crate) const NCT: u32 = Opcode::Nct.bits();
+    pub(crate) const SQR: u32 = Opcode::Sqr.bits();
+    pub(crate) const DCPL: u32 = Opcode::Dcpl.bits();
+    pub(crate) const DPCT: u32 = Opcode::Dpct.bits();
+    pub(crate) const AVSZ3: u32 = Opcode::Avsz3.bits();
+    pub(crate) const AVSZ4: u32 = Opcode::Avsz4.bits();
+    pub(crate) const RTPT: u32 = Opcode::Rtpt.bits();
+    pub(crate) const GPF: u32 = Opcode::Gpf.bits();
+    pub(crate) const GPL: u32 = Opcode::Gpl.bits();
+    pub(crate) const NCCT: u32 = Opcode::Ncct.bits();
+}
 
 impl Gte {
     /// A GTE with every register zero and the hardware divide.
@@ -200,98 +218,97 @@ impl Gte {
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let c = Command::new(command);
         self.flag_bits = 0;
-        // One dispatch on bits 0-5 (the opcode table of `Opcode::from_bits`) runs the command
-        // and yields its cycle count.
-        match OPCODES[(command & 0x3F) as usize] {
-            Some(Opcode::Rtps) => {
+        // One dispatch on bits 0-5 runs the command and yields its cycle count.
+        match command & 0x3F {
+            opcode_bits::RTPS => {
                 self.rtps(c.shift(), c.lm());
                 self.finish(Opcode::Rtps)
             }
-            Some(Opcode::Nclip) => {
+            opcode_bits::NCLIP => {
                 self.nclip();
                 self.finish(Opcode::Nclip)
             }
-            Some(Opcode::Op) => {
+            opcode_bits::OP => {
                 self.op(c.shift(), c.lm());
                 self.finish(Opcode::Op)
             }
-            Some(Opcode::Dpcs) => {
+            opcode_bits::DPCS => {
                 self.dpcs(c.shift(), c.lm());
                 self.finish(Opcode::Dpcs)
             }
-            Some(Opcode::Intpl) => {
+            opcode_bits::INTPL => {
                 self.intpl(c.shift(), c.lm());
                 self.finish(Opcode::Intpl)
             }
-            Some(Opcode::Mvmva) => {
+            opcode_bits::MVMVA => {
                 self.mvmva(c, c.shift(), c.lm());
                 self.finish(Opcode::Mvmva)
             }
-            Some(Opcode::Ncds) => {
+            opcode_bits::NCDS => {
                 self.ncds(c.shift(), c.lm());
                 self.finish(Opcode::Ncds)
             }
-            Some(Opcode::Cdp) => {
+            opcode_bits::CDP => {
                 self.cdp(c.shift(), c.lm());
                 self.finish(Opcode::Cdp)
             }
-            Some(Opcode::Ncdt) => {
+            opcode_bits::NCDT => {
                 self.ncdt(c.shift(), c.lm());
                 self.finish(Opcode::Ncdt)
             }
-            Some(Opcode::Nccs) => {
+            opcode_bits::NCCS => {
                 self.nccs(c.shift(), c.lm());
                 self.finish(Opcode::Nccs)
             }
-            Some(Opcode::Cc) => {
+            opcode_bits::CC => {
                 self.cc(c.shift(), c.lm());
                 self.finish(Opcode::Cc)
             }
-            Some(Opcode::Ncs) => {
+            opcode_bits::NCS => {
                 self.ncs(c.shift(), c.lm());
                 self.finish(Opcode::Ncs)
             }
-            Some(Opcode::Nct) => {
+            opcode_bits::NCT => {
                 self.nct(c.shift(), c.lm());
                 self.finish(Opcode::Nct)
             }
-            Some(Opcode::Sqr) => {
+            opcode_bits::SQR => {
                 self.sqr(c.shift(), c.lm());
                 self.finish(Opcode::Sqr)
             }
-            Some(Opcode::Dcpl) => {
+            opcode_bits::DCPL => {
                 self.dcpl(c.shift(), c.lm());
                 self.finish(Opcode::Dcpl)
             }
-            Some(Opcode::Dpct) => {
+            opcode_bits::DPCT => {
                 self.dpct(c.shift(), c.lm());
                 self.finish(Opcode::Dpct)
             }
-            Some(Opcode::Avsz3) => {
+            opcode_bits::AVSZ3 => {
                 self.avsz3();
                 self.finish(Opcode::Avsz3)
             }
-            Some(Opcode::Avsz4) => {
+            opcode_bits::AVSZ4 => {
                 self.avsz4();
                 self.finish(Opcode::Avsz4)
             }
-            Some(Opcode::Rtpt) => {
+            opcode_bits::RTPT => {
                 self.rtpt(c.shift(), c.lm());
                 self.finish(Opcode::Rtpt)
             }
-            Some(Opcode::Gpf) => {
+            opcode_bits::GPF => {
                 self.gpf(c.shift(), c.lm());
                 self.finish(Opcode::Gpf)
             }
-            Some(Opcode::Gpl) => {
+            opcode_bits::GPL => {
                 self.gpl(c.shift(), c.lm());
                 self.finish(Opcode::Gpl)
             }
-            Some(Opcode::Ncct) => {
+            opcode_bits::NCCT => {
                 self.ncct(c.shift(), c.lm());
                 self.finish(Opcode::Ncct)
             }
-            None => {
+            _ => {
                 self.regs.set_flag(Flag::EMPTY);
                 None
             }

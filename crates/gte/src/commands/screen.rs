@@ -38,8 +38,11 @@ impl Gte {
     fn average_z(&mut self, s: i64) {
         self.set_mac0(s);
         let mut otz = s >> 12;
-        // Outside 0..=FFFFh is one unsigned compare.
+        // Outside 0..=FFFFh is one unsigned compare. It takes a sum of Z values past 3 or 4
+        // times FFFFh scaled by ZSF3/ZSF4 (past 1000h / 3 or / 4) or a negative scale: rare
+        // enough for a branch marked cold.
         if otz as u64 > 0xFFFF {
+            core::hint::cold_path();
             otz = if otz < 0 { 0 } else { 0xFFFF };
             self.flag_bits |= bit::SZ3_OTZ;
         }
