@@ -66,6 +66,28 @@ pub const fn clamp(value: i64, min: i64, max: i64) -> (i64, bool) {
     }
 }
 
+/// Whether every value lies in `min..=min + span`, where `span` is one less than a power of
+/// two: the OR of the offsets from `min` is then at most `span`. Saturation tests that
+/// rarely fire become one compare and one branch; values outside are clamped one by one.
+#[inline(always)]
+pub(crate) fn all_within<const N: usize>(values: [i64; N], min: i64, span: u64) -> bool {
+    debug_assert!((span + 1).is_power_of_two());
+    values
+        .iter()
+        .fold(0u64, |offsets, &v| offsets | v.wrapping_sub(min) as u64)
+        <= span
+}
+
+/// [`all_within`] for 32-bit values (MAC1-3), in 32-bit arithmetic.
+#[inline(always)]
+pub(crate) fn all_within_32<const N: usize>(values: [i32; N], min: i32, span: u32) -> bool {
+    debug_assert!((span as u64 + 1).is_power_of_two());
+    values
+        .iter()
+        .fold(0u32, |offsets, &v| offsets | v.wrapping_sub(min) as u32)
+        <= span
+}
+
 /// IRn for a MAC value: saturated to 0 (`lm`) or -8000h up to 7FFFh, FLAG bit 25-n into
 /// `flags` (docs/hardware/gte.md §4).
 #[inline(always)]
@@ -112,7 +134,8 @@ pub(crate) struct Step {
 
 /// One step: MACn = (start_n + the products of row n) SAR sf and IRn from it by lm, for
 /// n = 1..3, FLAG bits into `flags` (docs/hardware/gte.md §4). `plain` as for
-/// [`accumulate`], for every row.
+/// [`accumulate`], for every row. IR1-3 are tested together ([`mac_ir_rows`]): for a step
+/// whose IRs saturate often, [`step_each_row`].
 #[inline(always)]
 pub(crate) fn step<const TERMS: usize>(
     flags: &mut u32,
@@ -124,26 +147,77 @@ pub(crate) fn step<const TERMS: usize>(
 ) -> Step {
     // `plain` tested once for the three rows.
     if plain {
-        step_rows::<TERMS, true>(flags, start, products, shift, lm)
+        step_rows::<TERMS, true, false>(flags, start, products, shift, lm)
     } else {
-        step_rows::<TERMS, false>(flags, start, products, shift, lm)
+        step_rows::<TERMS, false, false>(flags, start, products, shift, lm)
+    }
+}
+
+/// [`step`] with each IR saturated on its own, for a step whose IRs leave their range
+/// often: the light step of the normal-colour commands, whose dot products are negative
+/// for a normal facing away from a light (with lm, IR then saturates at 0).
+#[inline(always)]
+pub(crate) fn step_each_row<const TERMS: usize>(
+    flags: &mut u32,
+    start: [i64; 3],
+    products: [[i64; TERMS]; 3],
+    plain: bool,
+    shift: u32,
+    lm: bool,
+) -> Step {
+    if plain {
+        step_rows::<TERMS, true, true>(flags, start, products, shift, lm)
+    } else {
+        step_rows::<TERMS, false, true>(flags, start, products, shift, lm)
     }
 }
 
 #[inline(always)]
-fn step_rows<const TERMS: usize, const PLAIN: bool>(
+fn step_rows<const TERMS: usize, const PLAIN: bool, const EACH_ROW: bool>(
     flags: &mut u32,
     start: [i64; 3],
     products: [[i64; TERMS]; 3],
     shift: u32,
     lm: bool,
 ) -> Step {
-    let mut step = Step::default();
-    for n in 0..3 {
-        let sum = accumulate(flags, n + 1, start[n], &products[n], PLAIN);
-        (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
+    let sums: [i64; 3] =
+        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], PLAIN));
+    if EACH_ROW {
+        let mut step = Step::default();
+        for (n, &sum) in sums.iter().enumerate() {
+            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
+        }
+        step
+    } else {
+        mac_ir_rows(flags, sums, shift, lm)
     }
-    step
+}
+
+/// MAC1-3 = each sum SAR sf and IR1-3 from them by lm, FLAG bits into `flags`
+/// (docs/hardware/gte.md §4). IR1-3 all inside their range is one test ([`all_within_32`]);
+/// otherwise each saturates with its flag.
+#[inline(always)]
+fn mac_ir_rows(flags: &mut u32, sums: [i64; 3], shift: u32, lm: bool) -> Step {
+    let mac = sums.map(|s| (s >> shift) as i32);
+    let [m1, m2, m3] = mac;
+    let (min, span) = if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) };
+    let ir = if all_within_32(mac, min, span) {
+        [m1 as i64, m2 as i64, m3 as i64]
+    } else {
+        saturate_irs(flags, mac, lm)
+    };
+    Step { mac, ir }
+}
+
+/// IR1-3 from MAC1-3 one of which leaves its range, each saturated with its flag.
+#[cold]
+#[inline(never)]
+fn saturate_irs(flags: &mut u32, [m1, m2, m3]: [i32; 3], lm: bool) -> [i64; 3] {
+    [
+        saturate_ir(flags, 1, m1, lm) as i64,
+        saturate_ir(flags, 2, m2, lm) as i64,
+        saturate_ir(flags, 3, m3, lm) as i64,
+    ]
 }
 
 /// The three rows' accumulations of one step, as [`accumulate`]: `plain` is tested once for

@@ -277,6 +277,137 @@ proptest! {
         prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
     }
 
+    /// RTPS's saturations (docs/hardware/gte.md §5 steps 3-6) at every magnitude: rotation,
+    /// vertex and translation scaled down by random shifts, so that IR1-3, SZ3, SX2 and SY2
+    /// fall inside their ranges, on their edges and outside, alone or together. H = 0 makes
+    /// the quotient 0 (or 1FFFFh with the divide overflow when SZ3 = 0, §6), so SX2 and SY2
+    /// come from OFX and OFY. TR stays within 2^30, where no sum leaves 44 bits.
+    #[test]
+    fn rtps_saturation_at_every_magnitude(
+        m in prop::array::uniform9(any::<i16>()),
+        v in prop::array::uniform3(any::<i16>()),
+        tr in prop::array::uniform3(-(1i32 << 30)..(1 << 30)),
+        shifts in prop::array::uniform3(0u32..16),
+        tr_shift in 0u32..31,
+        ofs in prop::array::uniform2(any::<i32>()),
+        ofs_shift in 0u32..16,
+        sf in any::<bool>(),
+        lm in any::<bool>(),
+    ) {
+        let m = m.map(|e| e >> shifts[0]);
+        let v = v.map(|e| e >> shifts[1]);
+        let tr = tr.map(|t| t >> tr_shift);
+        let ofs = ofs.map(|o| o >> ofs_shift);
+        let mut gte = Gte::new();
+        let words = [packed(m[0], m[1]), packed(m[2], m[3]), packed(m[4], m[5]), packed(m[6], m[7]), m[8] as u32];
+        for (i, w) in words.into_iter().enumerate() {
+            gte.write_control(i as u32, w);
+        }
+        for (i, t) in tr.into_iter().enumerate() {
+            gte.write_control(5 + i as u32, t as u32);
+        }
+        gte.write_control(24, ofs[0] as u32);
+        gte.write_control(25, ofs[1] as u32);
+        gte.write_data(0, packed(v[0], v[1]));
+        gte.write_data(1, v[2] as u16 as u32);
+        gte.execute(cmd(Opcode::Rtps, sf, lm));
+        let flag = gte.flag();
+        let shift = if sf { 12 } else { 0 };
+        let min = if lm { 0 } else { -0x8000 };
+        let acc: [i128; 3] = core::array::from_fn(|r| {
+            ((tr[r] as i128) << 12) + (0..3).map(|c| m[r * 3 + c] as i128 * v[c] as i128).sum::<i128>()
+        });
+        let mut ir = [0i128; 3];
+        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED];
+        for n in 0..3 {
+            let mac = (acc[n] >> shift) as i32 as i128;
+            prop_assert_eq!(gte.read_data(25 + n as u32) as i32 as i128, mac);
+            ir[n] = mac.clamp(min, 0x7FFF);
+            prop_assert_eq!(gte.read_data(9 + n as u32) as i32 as i128, ir[n]);
+            if n < 2 {
+                prop_assert_eq!(flag.contains(bits[n]), ir[n] != mac);
+            }
+        }
+        // IR3's flag from acc3 SAR 12 against the lm=0 range; SZ3 from the same value.
+        let z = acc[2] >> 12;
+        prop_assert_eq!(flag.contains(Flag::IR3_SATURATED), !(-0x8000..=0x7FFF).contains(&z));
+        let sz3 = z.clamp(0, 0xFFFF);
+        prop_assert_eq!(gte.read_data(19) as i128, sz3);
+        prop_assert_eq!(flag.contains(Flag::SZ3_OTZ_SATURATED), sz3 != z);
+        let q: i128 = if sz3 == 0 { 0x1_FFFF } else { 0 };
+        prop_assert_eq!(flag.contains(Flag::DIVIDE_OVERFLOW), sz3 == 0);
+        let screen = [(q * ir[0] + ofs[0] as i128) >> 16, (q * ir[1] + ofs[1] as i128) >> 16];
+        let sxy = gte.read_data(14);
+        let got = [sxy as i16 as i128, (sxy >> 16) as i16 as i128];
+        let sat = [Flag::SX2_SATURATED, Flag::SY2_SATURATED];
+        for k in 0..2 {
+            let clamped = screen[k].clamp(-0x400, 0x3FF);
+            prop_assert_eq!(got[k], clamped);
+            prop_assert_eq!(flag.contains(sat[k]), clamped != screen[k]);
+        }
+        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+    }
+
+    /// NCS's two steps (docs/hardware/gte.md §8: IR = LLM * V, then IR = BK + LCM * IR, the
+    /// colour from the last MACs) at every magnitude: both matrices, the normal and BK scaled
+    /// down by random shifts, so that each step's IR1-3 fall inside their range, on its
+    /// edges and outside, alone or together. BK stays within 2^30, where no sum leaves 44
+    /// bits; LCM * IR then stays far inside them too.
+    #[test]
+    fn ncs_saturation_at_every_magnitude(
+        llm in prop::array::uniform9(any::<i16>()),
+        lcm in prop::array::uniform9(any::<i16>()),
+        v in prop::array::uniform3(any::<i16>()),
+        bk in prop::array::uniform3(-(1i32 << 30)..(1 << 30)),
+        shifts in prop::array::uniform4(0u32..16),
+        bk_shift in 0u32..31,
+        sf in any::<bool>(),
+        lm in any::<bool>(),
+    ) {
+        let llm = llm.map(|e| e >> shifts[0]);
+        let lcm = lcm.map(|e| e >> shifts[1]);
+        let v = v.map(|e| e >> shifts[2]);
+        let bk = bk.map(|b| b >> bk_shift);
+        let mut gte = Gte::new();
+        for (base, m) in [(8u32, llm), (16, lcm)] {
+            let words = [packed(m[0], m[1]), packed(m[2], m[3]), packed(m[4], m[5]), packed(m[6], m[7]), m[8] as u32];
+            for (i, w) in words.into_iter().enumerate() {
+                gte.write_control(base + i as u32, w);
+            }
+        }
+        for (i, b) in bk.into_iter().enumerate() {
+            gte.write_control(13 + i as u32, b as u32);
+        }
+        gte.write_data(0, packed(v[0], v[1]));
+        gte.write_data(1, v[2] as u16 as u32);
+        gte.write_data(6, 0x2A00_0000);
+        gte.execute(cmd(Opcode::Ncs, sf, lm));
+        let flag = gte.flag();
+        let shift = if sf { 12 } else { 0 };
+        let min = if lm { 0 } else { -0x8000 };
+        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED, Flag::IR3_SATURATED];
+        let mut raised = [false; 3];
+        let light: [i128; 3] = core::array::from_fn(|r| {
+            let mac = ((0..3).map(|c| llm[r * 3 + c] as i128 * v[c] as i128).sum::<i128>() >> shift) as i32 as i128;
+            let ir = mac.clamp(min, 0x7FFF);
+            raised[r] |= ir != mac;
+            ir
+        });
+        let mut rgb = 0x2A00_0000u32;
+        for r in 0..3 {
+            let sum = ((bk[r] as i128) << 12) + (0..3).map(|c| lcm[r * 3 + c] as i128 * light[c]).sum::<i128>();
+            let mac = (sum >> shift) as i32 as i128;
+            prop_assert_eq!(gte.read_data(25 + r as u32) as i32 as i128, mac);
+            let ir = mac.clamp(min, 0x7FFF);
+            raised[r] |= ir != mac;
+            prop_assert_eq!(gte.read_data(9 + r as u32) as i32 as i128, ir);
+            prop_assert_eq!(flag.contains(bits[r]), raised[r]);
+            rgb |= ((mac >> 4).clamp(0, 0xFF) as u32) << (8 * r);
+        }
+        prop_assert_eq!(gte.read_data(22), rgb);
+        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+    }
+
     /// MAC0 flags and value: NCLIP of arbitrary screen XY values.
     #[test]
     fn nclip_mac0_flags(p in prop::array::uniform6(any::<i16>())) {

@@ -1,15 +1,18 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
-use crate::mac::{Step, is_plain_start, step};
+use crate::mac::{Step, is_plain_start, step, step_each_row};
 
 /// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
 /// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
 /// whatever lm is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. `plain` says that
 /// every FCn << 12 leaves room for one product (docs/hardware/gte.md §4); every input is below
-/// 2^27 in magnitude, so the second sum is plain addition.
+/// 2^27 in magnitude, so the second sum is plain addition. With `EACH_ROW` each step tests
+/// its IRs one by one ([`step_each_row`]), otherwise together ([`step`]): DPCS, DPCT, DCPL
+/// and INTPL take the first, the lighting commands' depth cue the second, whichever
+/// measured faster for each (docs/performance.md, "Saturation tests").
 #[inline(always)]
-pub(crate) fn interpolate(
+pub(crate) fn interpolate<const EACH_ROW: bool>(
     flags: &mut u32,
     input: [i64; 3],
     fc: [i64; 3],
@@ -18,6 +21,7 @@ pub(crate) fn interpolate(
     shift: u32,
     lm: bool,
 ) -> Step {
+    let step = if EACH_ROW { step_each_row } else { step };
     let far = step(flags, fc, input.map(|i| [-i]), plain, shift, false);
     let products = [0, 1, 2].map(|n| [far.ir[n] * ir0]);
     step(flags, input, products, true, shift, lm)
@@ -30,7 +34,7 @@ impl Gte {
         let fc = self.regs.fc().map(|f| (f as i64) << 12);
         let plain = self.regs.fc_plain();
         let ir0 = self.regs.ir(0) as i64;
-        let last = interpolate(&mut self.flag_bits, input, fc, ir0, plain, shift, lm);
+        let last = interpolate::<true>(&mut self.flag_bits, input, fc, ir0, plain, shift, lm);
         self.step_result(last, &[], 0);
     }
 
@@ -95,7 +99,9 @@ impl Gte {
         let ir0 = self.regs.ir(0) as i64;
         let products = self.ir_vector().map(|ir| [ir * ir0]);
         let plain = start.iter().all(|&s| is_plain_start(s, 1));
-        let last = step(&mut self.flag_bits, start, products, plain, shift, lm);
+        // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
+        // saturate one by one.
+        let last = step_each_row(&mut self.flag_bits, start, products, plain, shift, lm);
         self.step_result(last, &[], 0);
         self.push_color();
     }

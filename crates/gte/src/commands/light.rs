@@ -6,7 +6,7 @@
 
 use crate::Gte;
 use crate::commands::depth_cue::interpolate;
-use crate::mac::{Step, color_entry as color, matrix_products, step};
+use crate::mac::{Step, color_entry as color, matrix_products, step, step_each_row};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command, and the register file for
@@ -73,10 +73,13 @@ impl<'r> Lighting<'r> {
         (last, color(flags, last.mac, self.code))
     }
 
-    /// IR = LLM * V, then IR = BK + LCM * IR (the normal-colour steps).
+    /// IR = LLM * V, then IR = BK + LCM * IR (the normal-colour steps). The first step's IRs
+    /// saturate whenever the normal faces away from a light (at 0 with lm), so they are
+    /// tested one by one ([`step_each_row`]).
     #[inline(always)]
     fn normal_light<const PLAIN: bool>(&self, flags: &mut u32, v: [i16; 3]) -> Step {
-        let light = self.matrix_step(flags, &self.llm, v.map(i64::from), [0; 3], true);
+        let products = matrix_products(&self.llm, v.map(i64::from));
+        let light = step_each_row(flags, [0; 3], products, true, self.shift, self.lm);
         self.background_light::<PLAIN>(flags, light.ir)
     }
 
@@ -107,7 +110,7 @@ impl<'r> Lighting<'r> {
     fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
         let input = self.color_times(ir);
         let ir0 = self.regs.ir(0) as i64;
-        interpolate(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
+        interpolate::<false>(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
     }
 }
 

@@ -2,7 +2,7 @@
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;
-use crate::mac::{bit, clamp, row_sums};
+use crate::mac::{all_within, all_within_32, bit, clamp, row_sums};
 use crate::{Gte, unr};
 
 /// Divide selectors for the const parameter of the projection. RTPT chooses the mode once
@@ -87,23 +87,19 @@ impl Gte {
         let mac1 = self.set_mac(1, acc[0], shift);
         let mac2 = self.set_mac(2, acc[1], shift);
         let mac3 = self.set_mac(3, acc[2], shift);
-        let ir1 = self.set_ir(1, mac1, lm);
-        let ir2 = self.set_ir(2, mac2, lm);
-        // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
-        let ir3_min = if lm { 0 } else { -0x8000 };
-        self.regs
-            .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
         let z = acc[2] >> 12;
-        // The IR3 flag's and SZ3's range tests are one unsigned compare each.
-        if (z + 0x8000) as u64 > 0xFFFF {
-            self.flag_bits |= bit::ir(3);
-        }
-        // SZ3 from the 44-bit accumulator, independent of sf (step 4).
-        let mut sz3 = z;
-        if sz3 as u64 > 0xFFFF {
-            sz3 = if sz3 < 0 { 0 } else { 0xFFFF };
-            self.flag_bits |= bit::SZ3_OTZ;
-        }
+        // IR1-3 inside their range and z inside 0..=7FFFh (inside the IR3 flag's lm=0 range
+        // and SZ3's range both) is one test; otherwise the steps saturate one by one.
+        let (ir_min, ir_span) = if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) };
+        let (ir1, ir2, sz3) =
+            if all_within_32([mac1, mac2, mac3], ir_min, ir_span) & all_within([z], 0, 0x7FFF) {
+                self.regs.set_ir(1, mac1 as i16);
+                self.regs.set_ir(2, mac2 as i16);
+                self.regs.set_ir(3, mac3 as i16);
+                (mac1 as i16, mac2 as i16, z)
+            } else {
+                self.saturate_projection(mac1, mac2, mac3, z, lm)
+            };
         self.regs.push_sz(sz3 as u16);
         // Divide (step 5).
         let (h, sz3) = (self.regs.h(), sz3 as u16);
@@ -132,14 +128,13 @@ impl Gte {
         let y = q * ir2 as i64 + ofy as i64;
         self.flag_mac0(x);
         self.flag_mac0(y);
-        let (sx, sx_sat) = clamp(x >> 16, -0x400, 0x3FF);
-        let (sy, sy_sat) = clamp(y >> 16, -0x400, 0x3FF);
-        if sx_sat {
-            self.flag_bits |= bit::SX2;
-        }
-        if sy_sat {
-            self.flag_bits |= bit::SY2;
-        }
+        // SX2 and SY2 inside -400h..=3FFh is one test.
+        let (sx, sy) = (x >> 16, y >> 16);
+        let (sx, sy) = if all_within([sx, sy], -0x400, 0x7FF) {
+            (sx, sy)
+        } else {
+            self.saturate_screen(sx, sy)
+        };
         self.regs
             .push_sxy((sx as i16 as u16 as u32) | ((sy as i16 as u16 as u32) << 16));
         if depth_cue {
@@ -154,5 +149,52 @@ impl Gte {
             self.flag_bits |= (v as u64 > 0x1000) as u32 * bit::IR0;
             self.regs.set_ir(0, ir0 as i16);
         }
+    }
+
+    /// IR1-3 and SZ3 of a projection one of whose values leaves its range (docs/hardware/gte.md
+    /// §5 steps 3-4): IR1-3 saturated by lm with their flags, the IR3 flag from z against
+    /// the lm=0 range, SZ3 = z saturated to 0..=FFFFh.
+    #[cold]
+    #[inline(never)]
+    fn saturate_projection(
+        &mut self,
+        mac1: i32,
+        mac2: i32,
+        mac3: i32,
+        z: i64,
+        lm: bool,
+    ) -> (i16, i16, i64) {
+        let ir1 = self.set_ir(1, mac1, lm);
+        let ir2 = self.set_ir(2, mac2, lm);
+        // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
+        let ir3_min = if lm { 0 } else { -0x8000 };
+        self.regs
+            .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
+        if (z + 0x8000) as u64 > 0xFFFF {
+            self.flag_bits |= bit::ir(3);
+        }
+        // SZ3 from the 44-bit accumulator, independent of sf (step 4).
+        let mut sz3 = z;
+        if sz3 as u64 > 0xFFFF {
+            sz3 = if sz3 < 0 { 0 } else { 0xFFFF };
+            self.flag_bits |= bit::SZ3_OTZ;
+        }
+        (ir1, ir2, sz3)
+    }
+
+    /// SX2 and SY2 of a projection one of which leaves -400h..=3FFh, saturated with their
+    /// flags (docs/hardware/gte.md §5 step 6).
+    #[cold]
+    #[inline(never)]
+    fn saturate_screen(&mut self, sx: i64, sy: i64) -> (i64, i64) {
+        let (sx, sx_sat) = clamp(sx, -0x400, 0x3FF);
+        let (sy, sy_sat) = clamp(sy, -0x400, 0x3FF);
+        if sx_sat {
+            self.flag_bits |= bit::SX2;
+        }
+        if sy_sat {
+            self.flag_bits |= bit::SY2;
+        }
+        (sx, sy)
     }
 }
