@@ -88,6 +88,13 @@ pub(crate) fn all_within_32<const N: usize>(values: [i32; N], min: i32, span: u3
         <= span
 }
 
+/// IRn's range by lm as [`all_within_32`] takes it: its start (0 with lm, otherwise -8000h)
+/// and its span (up to 7FFFh).
+#[inline(always)]
+pub(crate) const fn ir_range(lm: bool) -> (i32, u32) {
+    if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) }
+}
+
 /// IRn for a MAC value: saturated to 0 (`lm`) or -8000h up to 7FFFh, FLAG bit 25-n into
 /// `flags` (docs/hardware/gte.md §4).
 #[inline(always)]
@@ -134,8 +141,8 @@ pub(crate) struct Step {
 
 /// One step: MACn = (start_n + the products of row n) SAR sf and IRn from it by lm, for
 /// n = 1..3, FLAG bits into `flags` (docs/hardware/gte.md §4). `plain` as for
-/// [`accumulate`], for every row. IR1-3 are tested together ([`mac_ir_rows`]): for a step
-/// whose IRs saturate often, [`step_each_row`].
+/// [`accumulate`], for every row. IR1-3 are tested together ([`mac_ir_rows`]); a step whose
+/// IRs saturate often tests them one by one ([`step_with`]).
 #[inline(always)]
 pub(crate) fn step<const TERMS: usize>(
     flags: &mut u32,
@@ -145,19 +152,15 @@ pub(crate) fn step<const TERMS: usize>(
     shift: u32,
     lm: bool,
 ) -> Step {
-    // `plain` tested once for the three rows.
-    if plain {
-        step_rows::<TERMS, true, false>(flags, start, products, shift, lm)
-    } else {
-        step_rows::<TERMS, false, false>(flags, start, products, shift, lm)
-    }
+    step_with::<TERMS, false>(flags, start, products, plain, shift, lm)
 }
 
-/// [`step`] with each IR saturated on its own, for a step whose IRs leave their range
-/// often: the light step of the normal-colour commands, whose dot products are negative
-/// for a normal facing away from a light (with lm, IR then saturates at 0).
+/// [`step`], with each IR saturated on its own when `EACH_ROW` ([`mac_ir_each_row`]): for a
+/// step whose IRs leave their range often, such as the light step of the normal-colour
+/// commands, whose dot products are negative for a normal facing away from a light (with
+/// lm, IR then saturates at 0).
 #[inline(always)]
-pub(crate) fn step_each_row<const TERMS: usize>(
+pub(crate) fn step_with<const TERMS: usize, const EACH_ROW: bool>(
     flags: &mut u32,
     start: [i64; 3],
     products: [[i64; TERMS]; 3],
@@ -165,32 +168,24 @@ pub(crate) fn step_each_row<const TERMS: usize>(
     shift: u32,
     lm: bool,
 ) -> Step {
-    if plain {
-        step_rows::<TERMS, true, true>(flags, start, products, shift, lm)
-    } else {
-        step_rows::<TERMS, false, true>(flags, start, products, shift, lm)
-    }
-}
-
-#[inline(always)]
-fn step_rows<const TERMS: usize, const PLAIN: bool, const EACH_ROW: bool>(
-    flags: &mut u32,
-    start: [i64; 3],
-    products: [[i64; TERMS]; 3],
-    shift: u32,
-    lm: bool,
-) -> Step {
-    let sums: [i64; 3] =
-        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], PLAIN));
+    // `plain` tested once for the three rows.
+    let sums = row_sums(flags, start, &products, plain);
     if EACH_ROW {
-        let mut step = Step::default();
-        for (n, &sum) in sums.iter().enumerate() {
-            (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
-        }
-        step
+        mac_ir_each_row(flags, sums, shift, lm)
     } else {
         mac_ir_rows(flags, sums, shift, lm)
     }
+}
+
+/// MAC1-3 = each sum SAR sf and IR1-3 from them by lm, each IR saturated on its own with
+/// its flag (docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn mac_ir_each_row(flags: &mut u32, sums: [i64; 3], shift: u32, lm: bool) -> Step {
+    let mut step = Step::default();
+    for (n, &sum) in sums.iter().enumerate() {
+        (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
+    }
+    step
 }
 
 /// MAC1-3 = each sum SAR sf and IR1-3 from them by lm, FLAG bits into `flags`
@@ -200,7 +195,7 @@ fn step_rows<const TERMS: usize, const PLAIN: bool, const EACH_ROW: bool>(
 fn mac_ir_rows(flags: &mut u32, sums: [i64; 3], shift: u32, lm: bool) -> Step {
     let mac = sums.map(|s| (s >> shift) as i32);
     let [m1, m2, m3] = mac;
-    let (min, span) = if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) };
+    let (min, span) = ir_range(lm);
     let ir = if all_within_32(mac, min, span) {
         [m1 as i64, m2 as i64, m3 as i64]
     } else {

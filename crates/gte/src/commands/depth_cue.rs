@@ -1,14 +1,14 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
-use crate::mac::{Step, is_plain_start, step, step_each_row};
+use crate::mac::{Step, is_plain_start, step_with};
 
 /// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
 /// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
 /// whatever lm is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. `plain` says that
 /// every FCn << 12 leaves room for one product (docs/hardware/gte.md §4); every input is below
 /// 2^27 in magnitude, so the second sum is plain addition. With `EACH_ROW` each step tests
-/// its IRs one by one ([`step_each_row`]), otherwise together ([`step`]): DPCS, DPCT, DCPL
+/// its IRs one by one, otherwise together ([`step_with`]): DPCS, DPCT, DCPL
 /// and INTPL take the first, the lighting commands' depth cue the second, whichever
 /// measured faster for each (docs/performance.md, "Saturation tests").
 #[inline(always)]
@@ -21,10 +21,9 @@ pub(crate) fn interpolate<const EACH_ROW: bool>(
     shift: u32,
     lm: bool,
 ) -> Step {
-    let step = if EACH_ROW { step_each_row } else { step };
-    let far = step(flags, fc, input.map(|i| [-i]), plain, shift, false);
+    let far = step_with::<1, EACH_ROW>(flags, fc, input.map(|i| [-i]), plain, shift, false);
     let products = [0, 1, 2].map(|n| [far.ir[n] * ir0]);
-    step(flags, input, products, true, shift, lm)
+    step_with::<1, EACH_ROW>(flags, input, products, true, shift, lm)
 }
 
 impl Gte {
@@ -101,7 +100,7 @@ impl Gte {
         let plain = start.iter().all(|&s| is_plain_start(s, 1));
         // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
         // saturate one by one.
-        let last = step_each_row(&mut self.flag_bits, start, products, plain, shift, lm);
+        let last = step_with::<1, true>(&mut self.flag_bits, start, products, plain, shift, lm);
         self.step_result(last, &[], 0);
         self.push_color();
     }

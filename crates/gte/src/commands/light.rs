@@ -6,7 +6,7 @@
 
 use crate::Gte;
 use crate::commands::depth_cue::interpolate;
-use crate::mac::{Step, color_entry as color, matrix_products, step, step_each_row};
+use crate::mac::{Step, color_entry as color, matrix_products, step, step_with};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command, and the register file for
@@ -75,11 +75,11 @@ impl<'r> Lighting<'r> {
 
     /// IR = LLM * V, then IR = BK + LCM * IR (the normal-colour steps). The first step's IRs
     /// saturate whenever the normal faces away from a light (at 0 with lm), so they are
-    /// tested one by one ([`step_each_row`]).
+    /// tested one by one ([`step_with`]).
     #[inline(always)]
     fn normal_light<const PLAIN: bool>(&self, flags: &mut u32, v: [i16; 3]) -> Step {
         let products = matrix_products(&self.llm, v.map(i64::from));
-        let light = step_each_row(flags, [0; 3], products, true, self.shift, self.lm);
+        let light = step_with::<3, true>(flags, [0; 3], products, true, self.shift, self.lm);
         self.background_light::<PLAIN>(flags, light.ir)
     }
 

@@ -3,7 +3,7 @@
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::mac::{Step, mac_ir, matrix_products, row_sums};
+use crate::mac::{mac_ir_each_row, matrix_products, row_sums};
 
 impl Gte {
     /// IR1-3 widened.
@@ -76,10 +76,7 @@ impl Gte {
         let mut flags = 0;
         // The three sums first, then their MAC/IR: fewer values live at once.
         let sums = row_sums(&mut flags, start, &matrix_products(m, v), plain);
-        let mut last = Step::default();
-        for (n, &sum) in sums.iter().enumerate() {
-            (last.mac[n], last.ir[n]) = mac_ir(&mut flags, n + 1, sum, shift, lm);
-        }
+        let last = mac_ir_each_row(&mut flags, sums, shift, lm);
         self.step_result(last, &[], flags);
     }
 

@@ -2,7 +2,7 @@
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;
-use crate::mac::{all_within, all_within_32, bit, clamp, row_sums};
+use crate::mac::{all_within, all_within_32, bit, clamp, ir_range, row_sums};
 use crate::{Gte, unr};
 
 /// Divide selectors for the const parameter of the projection. RTPT chooses the mode once
@@ -90,9 +90,9 @@ impl Gte {
         let z = acc[2] >> 12;
         // IR1-3 inside their range and z inside 0..=7FFFh (inside the IR3 flag's lm=0 range
         // and SZ3's range both) is one test; otherwise the steps saturate one by one.
-        let (ir_min, ir_span) = if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) };
+        let (ir_min, ir_span) = ir_range(lm);
         let (ir1, ir2, sz3) =
-            if all_within_32([mac1, mac2, mac3], ir_min, ir_span) & all_within([z], 0, 0x7FFF) {
+            if all_within_32([mac1, mac2, mac3], ir_min, ir_span) & (z as u64 <= 0x7FFF) {
                 self.regs.set_ir(1, mac1 as i16);
                 self.regs.set_ir(2, mac2 as i16);
                 self.regs.set_ir(3, mac3 as i16);
