@@ -422,6 +422,20 @@ impl RegisterFile {
         [xy as i16, (xy >> 16) as i16, self.data.lo(2 * n + 1)]
     }
 
+    /// Vertex Vn as [`RegisterFile::v`], with VZn's word loaded whole ([`Words::whole`]), for
+    /// RTPS/RTPT: the depth is the start of the projection's longest chain (SZ3, the divide,
+    /// the screen position), and an emulator has usually just written it with MTC2. The
+    /// other commands keep the narrow load, whose place the compiler is free to choose.
+    #[inline(always)]
+    pub(crate) fn v_whole(&self, n: usize) -> [i16; 3] {
+        let xy = self.data.word(2 * n);
+        [
+            xy as i16,
+            (xy >> 16) as i16,
+            self.data.whole(2 * n + 1) as i16,
+        ]
+    }
+
     /// RGBC (r6).
     #[inline(always)]
     pub(crate) fn rgbc(&self) -> u32 {

@@ -49,9 +49,11 @@ pub const fn unr_divide(h: u16, sz3: u16) -> (u32, bool) {
     (unr_quotient(h, sz3), false)
 }
 
-/// The reciprocal seeds `T[i] + 101h` of the table, as the refinement uses them.
-const UNR_SEEDS: [u16; 257] = {
-    let mut seeds = [0u16; 257];
+/// The reciprocal seeds `T[i] + 101h` of the table, as the refinement uses them, at indices
+/// 0..=256. The array is as long as a 9-bit index can reach, so that an index computed in
+/// 16 bits and shifted right by 7 needs no bounds check; entries past 256 are never read.
+const UNR_SEEDS: [u16; 512] = {
+    let mut seeds = [0u16; 512];
     let mut i = 0;
     while i < 257 {
         seeds[i] = UNR_TABLE[i] as u16 + 0x101;
@@ -70,7 +72,7 @@ pub(crate) const fn unr_quotient(h: u16, sz3: u16) -> u32 {
     let log = (sz3 as u32 | 1).ilog2();
     let n = ((h as u64) << 15) >> log;
     let d = ((sz3 as i64) << 15) >> log; // 8000h..=FFFFh
-    let index = ((d - 0x7FC0) >> 7) as usize; // 0..=256
+    let index = ((d as u16).wrapping_sub(0x7FC0) >> 7) as usize; // 0..=256
     let u = UNR_SEEDS[index] as i64;
     let d = (0x200_0080 - d * u) >> 8;
     let d = (0x80 + d * u) >> 8;

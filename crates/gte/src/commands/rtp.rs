@@ -71,7 +71,7 @@ impl Gte {
         lm: bool,
         depth_cue: bool,
     ) {
-        let v = self.regs.v(index);
+        let v = self.regs.v_whole(index);
         let rt = self.regs.rt();
         let tr = self.regs.tr();
         let plain = self.regs.tr_plain();
@@ -126,14 +126,13 @@ impl Gte {
         let (ofx, ofy) = self.regs.offset();
         let x = q * ir1 as i64 + ofx as i64;
         let y = q * ir2 as i64 + ofy as i64;
-        self.flag_mac0(x);
-        self.flag_mac0(y);
-        // SX2 and SY2 inside -400h..=3FFh is one test.
+        // SX2 and SY2 inside -400h..=3FFh is one test. It also clears the MAC0 flags: X
+        // and Y are then inside -2^26..2^26, well within 32 bits.
         let (sx, sy) = (x >> 16, y >> 16);
         let (sx, sy) = if all_within([sx, sy], -0x400, 0x7FF) {
             (sx, sy)
         } else {
-            self.saturate_screen(sx, sy)
+            self.saturate_screen(x, y)
         };
         self.regs
             .push_sxy((sx as i16 as u16 as u32) | ((sy as i16 as u16 as u32) << 16));
@@ -182,13 +181,16 @@ impl Gte {
         (ir1, ir2, sz3)
     }
 
-    /// SX2 and SY2 of a projection one of which leaves -400h..=3FFh, saturated with their
-    /// flags (docs/hardware/gte.md §5 step 6).
+    /// SX2 and SY2 from the screen values `x` and `y` (16.16) when one of them leaves
+    /// -400h..=3FFh: the MAC0 flags of each value, then each saturated with its flag
+    /// (docs/hardware/gte.md §5 step 6).
     #[cold]
     #[inline(never)]
-    fn saturate_screen(&mut self, sx: i64, sy: i64) -> (i64, i64) {
-        let (sx, sx_sat) = clamp(sx, -0x400, 0x3FF);
-        let (sy, sy_sat) = clamp(sy, -0x400, 0x3FF);
+    fn saturate_screen(&mut self, x: i64, y: i64) -> (i64, i64) {
+        self.flag_mac0(x);
+        self.flag_mac0(y);
+        let (sx, sx_sat) = clamp(x >> 16, -0x400, 0x3FF);
+        let (sy, sy_sat) = clamp(y >> 16, -0x400, 0x3FF);
         if sx_sat {
             self.flag_bits |= bit::SX2;
         }

@@ -35,17 +35,21 @@ impl Gte {
         self.average_z(self.regs.zsf().1 as i64 * sum);
     }
 
+    /// MAC0 = `s` and OTZ = `s` SAR 12 saturated to 0..=FFFFh, with their flags.
     fn average_z(&mut self, s: i64) {
-        self.set_mac0(s);
-        let mut otz = s >> 12;
-        // Outside 0..=FFFFh is one unsigned compare. It takes a sum of Z values past 3 or 4
-        // times FFFFh scaled by ZSF3/ZSF4 (past 1000h / 3 or / 4) or a negative scale: rare
-        // enough for a branch marked cold.
-        if otz as u64 > 0xFFFF {
+        let otz = s >> 12;
+        // OTZ inside 0..=FFFFh is one unsigned compare, and it puts `s` inside 0..2^28, so
+        // MAC0 needs no test of its own. Outside takes a sum of Z values past 3 or 4 times
+        // FFFFh scaled by ZSF3/ZSF4 (past 1000h / 3 or / 4) or a negative scale: rare enough
+        // for a branch marked cold.
+        if otz as u64 <= 0xFFFF {
+            self.regs.set_mac(0, s as i32);
+            self.regs.set_otz(otz as u16);
+        } else {
             core::hint::cold_path();
-            otz = if otz < 0 { 0 } else { 0xFFFF };
+            self.set_mac0(s);
+            self.regs.set_otz(if otz < 0 { 0 } else { 0xFFFF });
             self.flag_bits |= bit::SZ3_OTZ;
         }
-        self.regs.set_otz(otz as u16);
     }
 }
