@@ -106,12 +106,37 @@ pub(crate) fn saturate_ir(flags: &mut u32, n: usize, value: i32, lm: bool) -> i1
     ir as i16
 }
 
-/// MACn = low 32 bits of (sum SAR sf) and IRn from it, as [`saturate_ir`]
-/// (docs/hardware/gte.md §4).
+/// [`saturate_ir`] for a value that seldom leaves IRn's range: the saturation and its flag
+/// are kept out of the straight path (`cold_path`), which is then two compares and no
+/// moves.
 #[inline(always)]
-pub(crate) fn mac_ir(flags: &mut u32, n: usize, sum: i64, shift: u32, lm: bool) -> (i32, i64) {
+fn saturate_ir_rare(flags: &mut u32, n: usize, value: i32, lm: bool) -> i16 {
+    let min = if lm { 0 } else { -0x8000 };
+    if value < min || value > 0x7FFF {
+        core::hint::cold_path();
+        *flags |= bit::ir(n);
+        return if value < min { min as i16 } else { 0x7FFF };
+    }
+    value as i16
+}
+
+/// MACn = low 32 bits of (sum SAR sf) and IRn from it, as [`saturate_ir`], or as
+/// [`saturate_ir_rare`] when `RARE` (docs/hardware/gte.md §4).
+#[inline(always)]
+pub(crate) fn mac_ir<const RARE: bool>(
+    flags: &mut u32,
+    n: usize,
+    sum: i64,
+    shift: u32,
+    lm: bool,
+) -> (i32, i64) {
     let mac = (sum >> shift) as i32;
-    (mac, saturate_ir(flags, n, mac, lm) as i64)
+    let ir = if RARE {
+        saturate_ir_rare(flags, n, mac, lm)
+    } else {
+        saturate_ir(flags, n, mac, lm)
+    };
+    (mac, ir as i64)
 }
 
 /// Colour FIFO entry from MAC1-3: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n into
@@ -139,10 +164,26 @@ pub(crate) struct Step {
     pub(crate) ir: [i64; 3],
 }
 
+/// How a step tests IR1-3 against their range, as the const parameter of [`step_with`]
+/// (docs/performance.md, "Saturation tests"): each form measured fastest where it is used.
+pub(crate) mod ir_test {
+    /// One test for the three IRs, the saturation out of line ([`super::mac_ir_rows`]): steps
+    /// whose IRs seldom leave their range (RTPS/RTPT, the lighting commands' later steps).
+    pub(crate) const GROUPED: u8 = 0;
+    /// A test per IR, the saturation in line ([`super::saturate_ir`]): steps whose IRs
+    /// leave their range often, such as the light step of the normal-colour commands, whose
+    /// dot products are negative for a normal facing away from a light (with lm, IR then
+    /// saturates at 0), and GPF/GPL, whose products pass the range whenever IR0 passes 1000h.
+    pub(crate) const EACH: u8 = 1;
+    /// A test per IR, the saturation out of the straight path ([`super::saturate_ir_rare`]):
+    /// steps whose IRs seldom leave their range but where the grouped test measured slower
+    /// (DPCS/DPCT/DCPL/INTPL, MVMVA).
+    pub(crate) const EACH_RARE: u8 = 2;
+}
+
 /// One step: MACn = (start_n + the products of row n) SAR sf and IRn from it by lm, for
 /// n = 1..3, FLAG bits into `flags` (docs/hardware/gte.md §4). `plain` as for
-/// [`accumulate`], for every row. IR1-3 are tested together ([`mac_ir_rows`]); a step whose
-/// IRs saturate often tests them one by one ([`step_with`]).
+/// [`accumulate`], for every row. IR1-3 are tested together ([`ir_test::GROUPED`]).
 #[inline(always)]
 pub(crate) fn step<const TERMS: usize>(
     flags: &mut u32,
@@ -152,15 +193,12 @@ pub(crate) fn step<const TERMS: usize>(
     shift: u32,
     lm: bool,
 ) -> Step {
-    step_with::<TERMS, false>(flags, start, products, plain, shift, lm)
+    step_with::<TERMS, { ir_test::GROUPED }>(flags, start, products, plain, shift, lm)
 }
 
-/// [`step`], with each IR saturated on its own when `EACH_ROW` ([`mac_ir_each_row`]): for a
-/// step whose IRs leave their range often, such as the light step of the normal-colour
-/// commands, whose dot products are negative for a normal facing away from a light (with
-/// lm, IR then saturates at 0).
+/// [`step`], with IR1-3 tested in the form `TEST` ([`ir_test`]).
 #[inline(always)]
-pub(crate) fn step_with<const TERMS: usize, const EACH_ROW: bool>(
+pub(crate) fn step_with<const TERMS: usize, const TEST: u8>(
     flags: &mut u32,
     start: [i64; 3],
     products: [[i64; TERMS]; 3],
@@ -170,20 +208,25 @@ pub(crate) fn step_with<const TERMS: usize, const EACH_ROW: bool>(
 ) -> Step {
     // `plain` tested once for the three rows.
     let sums = row_sums(flags, start, &products, plain);
-    if EACH_ROW {
-        mac_ir_each_row(flags, sums, shift, lm)
-    } else {
-        mac_ir_rows(flags, sums, shift, lm)
+    match TEST {
+        ir_test::GROUPED => mac_ir_rows(flags, sums, shift, lm),
+        ir_test::EACH => mac_ir_each_row::<false>(flags, sums, shift, lm),
+        _ => mac_ir_each_row::<true>(flags, sums, shift, lm),
     }
 }
 
 /// MAC1-3 = each sum SAR sf and IR1-3 from them by lm, each IR saturated on its own with
-/// its flag (docs/hardware/gte.md §4).
+/// its flag (docs/hardware/gte.md §4), as [`mac_ir`] with `RARE`.
 #[inline(always)]
-pub(crate) fn mac_ir_each_row(flags: &mut u32, sums: [i64; 3], shift: u32, lm: bool) -> Step {
+pub(crate) fn mac_ir_each_row<const RARE: bool>(
+    flags: &mut u32,
+    sums: [i64; 3],
+    shift: u32,
+    lm: bool,
+) -> Step {
     let mut step = Step::default();
     for (n, &sum) in sums.iter().enumerate() {
-        (step.mac[n], step.ir[n]) = mac_ir(flags, n + 1, sum, shift, lm);
+        (step.mac[n], step.ir[n]) = mac_ir::<RARE>(flags, n + 1, sum, shift, lm);
     }
     step
 }

@@ -1,18 +1,18 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
 
 use crate::Gte;
-use crate::mac::{Step, is_plain_start, step_with};
+use crate::mac::{Step, ir_test, is_plain_start, step_with};
 
 /// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
 /// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
 /// whatever lm is, then MACn = (IRn * IR0 + in_n) SAR sf with IRn by lm. `plain` says that
 /// every FCn << 12 leaves room for one product (docs/hardware/gte.md §4); every input is below
-/// 2^27 in magnitude, so the second sum is plain addition. With `EACH_ROW` each step tests
-/// its IRs one by one, otherwise together ([`step_with`]): DPCS, DPCT, DCPL
-/// and INTPL take the first, the lighting commands' depth cue the second, whichever
-/// measured faster for each (docs/performance.md, "Saturation tests").
+/// 2^27 in magnitude, so the second sum is plain addition. Both steps test their IRs in the
+/// form `TEST` ([`ir_test`]): DPCS, DPCT, DCPL and INTPL one by one with the saturation out
+/// of the way, the lighting commands' depth cue together, whichever measured faster for each
+/// (docs/performance.md, "Saturation tests").
 #[inline(always)]
-pub(crate) fn interpolate<const EACH_ROW: bool>(
+pub(crate) fn interpolate<const TEST: u8>(
     flags: &mut u32,
     input: [i64; 3],
     fc: [i64; 3],
@@ -21,9 +21,9 @@ pub(crate) fn interpolate<const EACH_ROW: bool>(
     shift: u32,
     lm: bool,
 ) -> Step {
-    let far = step_with::<1, EACH_ROW>(flags, fc, input.map(|i| [-i]), plain, shift, false);
+    let far = step_with::<1, TEST>(flags, fc, input.map(|i| [-i]), plain, shift, false);
     let products = [0, 1, 2].map(|n| [far.ir[n] * ir0]);
-    step_with::<1, EACH_ROW>(flags, input, products, true, shift, lm)
+    step_with::<1, TEST>(flags, input, products, true, shift, lm)
 }
 
 impl Gte {
@@ -33,7 +33,15 @@ impl Gte {
         let fc = self.regs.fc().map(|f| (f as i64) << 12);
         let plain = self.regs.fc_plain();
         let ir0 = self.regs.ir(0) as i64;
-        let last = interpolate::<true>(&mut self.flag_bits, input, fc, ir0, plain, shift, lm);
+        let last = interpolate::<{ ir_test::EACH_RARE }>(
+            &mut self.flag_bits,
+            input,
+            fc,
+            ir0,
+            plain,
+            shift,
+            lm,
+        );
         self.step_result(last, &[], 0);
     }
 
@@ -100,7 +108,14 @@ impl Gte {
         let plain = start.iter().all(|&s| is_plain_start(s, 1));
         // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
         // saturate one by one.
-        let last = step_with::<1, true>(&mut self.flag_bits, start, products, plain, shift, lm);
+        let last = step_with::<1, { ir_test::EACH }>(
+            &mut self.flag_bits,
+            start,
+            products,
+            plain,
+            shift,
+            lm,
+        );
         self.step_result(last, &[], 0);
         self.push_color();
     }

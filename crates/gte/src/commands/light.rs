@@ -6,7 +6,7 @@
 
 use crate::Gte;
 use crate::commands::depth_cue::interpolate;
-use crate::mac::{Step, color_entry as color, matrix_products, step, step_with};
+use crate::mac::{Step, color_entry as color, ir_test, matrix_products, step, step_with};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command, and the register file for
@@ -79,7 +79,8 @@ impl<'r> Lighting<'r> {
     #[inline(always)]
     fn normal_light<const PLAIN: bool>(&self, flags: &mut u32, v: [i16; 3]) -> Step {
         let products = matrix_products(&self.llm, v.map(i64::from));
-        let light = step_with::<3, true>(flags, [0; 3], products, true, self.shift, self.lm);
+        let light =
+            step_with::<3, { ir_test::EACH }>(flags, [0; 3], products, true, self.shift, self.lm);
         self.background_light::<PLAIN>(flags, light.ir)
     }
 
@@ -110,7 +111,7 @@ impl<'r> Lighting<'r> {
     fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
         let input = self.color_times(ir);
         let ir0 = self.regs.ir(0) as i64;
-        interpolate::<false>(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
+        interpolate::<{ ir_test::GROUPED }>(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
     }
 }
 

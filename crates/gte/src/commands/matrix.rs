@@ -76,7 +76,7 @@ impl Gte {
         let mut flags = 0;
         // The three sums first, then their MAC/IR: fewer values live at once.
         let sums = row_sums(&mut flags, start, &matrix_products(m, v), plain);
-        let last = mac_ir_each_row(&mut flags, sums, shift, lm);
+        let last = mac_ir_each_row::<true>(&mut flags, sums, shift, lm);
         self.step_result(last, &[], flags);
     }
 
