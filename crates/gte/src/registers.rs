@@ -337,6 +337,10 @@ impl RegisterFile {
         }
     }
 
+    /// MFC2 of SXYP, IRGB or ORGB: out of line, so that the reads an emulator makes of
+    /// stored registers run straight through.
+    #[cold]
+    #[inline(never)]
     fn read_data_special(&self, r: usize) -> u32 {
         match r {
             // SXYP reads as SXY2.
@@ -357,6 +361,10 @@ impl RegisterFile {
         self.data.set(r, value);
     }
 
+    /// MTC2 of SXYP, IRGB, ORGB, LZCS or LZCR: out of line, so that the writes an
+    /// emulator makes of every other register run straight through to their store.
+    #[cold]
+    #[inline(never)]
     fn write_data_special(&mut self, r: usize, value: u32) {
         match r {
             15 => self.push_sxy(value),
