@@ -106,22 +106,11 @@ pub(crate) fn saturate_ir(flags: &mut u32, n: usize, value: i32, lm: bool) -> i1
     ir as i16
 }
 
-/// [`saturate_ir`] for a value that seldom leaves IRn's range: the saturation and its flag
-/// are kept out of the straight path (`cold_path`), which is then two compares and no
-/// moves.
-#[inline(always)]
-fn saturate_ir_rare(flags: &mut u32, n: usize, value: i32, lm: bool) -> i16 {
-    let min = if lm { 0 } else { -0x8000 };
-    if value < min || value > 0x7FFF {
-        core::hint::cold_path();
-        *flags |= bit::ir(n);
-        return if value < min { min as i16 } else { 0x7FFF };
-    }
-    value as i16
-}
-
-/// MACn = low 32 bits of (sum SAR sf) and IRn from it, as [`saturate_ir`], or as
-/// [`saturate_ir_rare`] when `RARE` (docs/hardware/gte.md §4).
+/// MACn = low 32 bits of (sum SAR sf) and IRn from it, as [`saturate_ir`]
+/// (docs/hardware/gte.md §4). With `RARE`, for values that seldom leave IRn's range, the
+/// test is made on the shifted sum before its truncation to 32 bits: inside IRn's range it
+/// equals MACn, and IRn is that value with no conversion; outside, the saturation, by MACn,
+/// is kept out of the straight path (`cold_path`).
 #[inline(always)]
 pub(crate) fn mac_ir<const RARE: bool>(
     flags: &mut u32,
@@ -130,13 +119,17 @@ pub(crate) fn mac_ir<const RARE: bool>(
     shift: u32,
     lm: bool,
 ) -> (i32, i64) {
-    let mac = (sum >> shift) as i32;
-    let ir = if RARE {
-        saturate_ir_rare(flags, n, mac, lm)
-    } else {
-        saturate_ir(flags, n, mac, lm)
-    };
-    (mac, ir as i64)
+    let wide = sum >> shift;
+    let mac = wide as i32;
+    if RARE {
+        let min = if lm { 0 } else { -0x8000 };
+        if wide < min || wide > 0x7FFF {
+            core::hint::cold_path();
+            return (mac, saturate_ir(flags, n, mac, lm) as i64);
+        }
+        return (mac, wide);
+    }
+    (mac, saturate_ir(flags, n, mac, lm) as i64)
 }
 
 /// Colour FIFO entry from MAC1-3: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n into
@@ -175,7 +168,7 @@ pub(crate) mod ir_test {
     /// dot products are negative for a normal facing away from a light (with lm, IR then
     /// saturates at 0), and GPF/GPL, whose products pass the range whenever IR0 passes 1000h.
     pub(crate) const EACH: u8 = 1;
-    /// A test per IR, the saturation out of the straight path ([`super::saturate_ir_rare`]):
+    /// A test per IR, the saturation out of the straight path ([`super::mac_ir`]):
     /// steps whose IRs seldom leave their range but where the grouped test measured slower
     /// (DPCS/DPCT/DCPL/INTPL, MVMVA).
     pub(crate) const EACH_RARE: u8 = 2;
