@@ -158,7 +158,8 @@ pub(crate) struct Step {
 }
 
 /// How a step tests IR1-3 against their range, as the const parameter of [`step_with`]
-/// (docs/performance.md, "Saturation tests"): each form measured fastest where it is used.
+/// (docs/performance.md, "Saturation tests" and "Straight paths and tests folded into
+/// others"): each form measured fastest where it is used.
 pub(crate) mod ir_test {
     /// One test for the three IRs, the saturation out of line ([`super::mac_ir_rows`]): steps
     /// whose IRs seldom leave their range (RTPS/RTPT, the lighting commands' later steps).

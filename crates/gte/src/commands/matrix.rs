@@ -74,7 +74,8 @@ impl Gte {
     ) {
         let start = t.map(|t| (t as i64) << 12);
         let mut flags = 0;
-        // The three sums first, then their MAC/IR: fewer values live at once.
+        // The three sums first, then their MAC/IR: fewer values live at once. Each IR is
+        // tested on its own, its saturation off the straight path (`ir_test::EACH_RARE`).
         let sums = row_sums(&mut flags, start, &matrix_products(m, v), plain);
         let last = mac_ir_each_row::<true>(&mut flags, sums, shift, lm);
         self.step_result(last, &[], flags);
