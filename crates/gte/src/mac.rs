@@ -88,8 +88,8 @@ pub(crate) fn all_within_32<const N: usize>(values: [i32; N], min: i32, span: u3
         <= span
 }
 
-/// IRn's range by lm as [`all_within_32`] takes it: its start (0 with lm, otherwise -8000h)
-/// and its span (up to 7FFFh).
+/// IRn's range by lm (docs/hardware/gte.md §4): its start (0 with lm, otherwise -8000h) and
+/// its span up to 7FFFh, as [`all_within_32`] takes them.
 #[inline(always)]
 pub(crate) const fn ir_range(lm: bool) -> (i32, u32) {
     if lm { (0, 0x7FFF) } else { (-0x8000, 0xFFFF) }
@@ -122,6 +122,8 @@ pub(crate) fn mac_ir<const RARE: bool>(
     let wide = sum >> shift;
     let mac = wide as i32;
     if RARE {
+        // IR's start as an i64 here, not through `ir_range`'s i32: widened from that, it
+        // cost DPCS 5 more instructions a call in the probe loop.
         let min = if lm { 0 } else { -0x8000 };
         if wide < min || wide > 0x7FFF {
             core::hint::cold_path();

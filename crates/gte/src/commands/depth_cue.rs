@@ -10,7 +10,8 @@ use crate::mac::{Step, ir_test, is_plain_start, step_with};
 /// 2^27 in magnitude, so the second sum is plain addition. Both steps test their IRs in the
 /// form `TEST` ([`ir_test`]): DPCS, DPCT, DCPL and INTPL one by one with the saturation out
 /// of the way, the lighting commands' depth cue together, whichever measured faster for each
-/// (docs/performance.md, "Saturation tests").
+/// (docs/performance.md, "Saturation tests" and "Straight paths and tests folded into
+/// others").
 #[inline(always)]
 pub(crate) fn interpolate<const TEST: u8>(
     flags: &mut u32,

@@ -166,7 +166,7 @@ impl Gte {
         let ir1 = self.set_ir(1, mac1, lm);
         let ir2 = self.set_ir(2, mac2, lm);
         // IR3: value from MAC3 by lm, flag from acc3 SAR 12 against the lm=0 range (step 3).
-        let ir3_min = if lm { 0 } else { -0x8000 };
+        let ir3_min = ir_range(lm).0 as i64;
         self.regs
             .set_ir(3, clamp(mac3 as i64, ir3_min, 0x7FFF).0 as i16);
         if (z + 0x8000) as u64 > 0xFFFF {
