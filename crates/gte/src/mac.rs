@@ -263,10 +263,20 @@ pub(crate) fn row_sums<const TERMS: usize>(
     products: &[[i64; TERMS]; 3],
     plain: bool,
 ) -> [i64; 3] {
+    // Written out row by row rather than through `core::array::from_fn`, which the
+    // compiler does not always inline.
     if plain {
-        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], true))
+        [
+            accumulate(flags, 1, start[0], &products[0], true),
+            accumulate(flags, 2, start[1], &products[1], true),
+            accumulate(flags, 3, start[2], &products[2], true),
+        ]
     } else {
-        core::array::from_fn(|n| accumulate(flags, n + 1, start[n], &products[n], false))
+        [
+            accumulate(flags, 1, start[0], &products[0], false),
+            accumulate(flags, 2, start[1], &products[1], false),
+            accumulate(flags, 3, start[2], &products[2], false),
+        ]
     }
 }
 
