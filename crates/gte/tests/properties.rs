@@ -64,6 +64,35 @@ fn cmd(op: Opcode, sf: bool, lm: bool) -> u32 {
     .word()
 }
 
+/// RTPS with sf = 0 where MAC1 and MAC2 lie inside IR's range, MAC3 beyond 7FFFh and
+/// acc_3 SAR 12 inside both IR3's flag range and SZ3's (docs/hardware/gte.md §5.1-5.4):
+/// RT = 1.0 on the diagonal, V0 = (0, 0, 100h), TR = 0, so acc_3 = 1000h × 100h = 100000h.
+/// MAC3 = 100000h (sf = 0) and IR3 = 7FFFh, yet FLAG bit 22 stays clear, because its test
+/// is on acc_3 SAR 12 = 100h (§5.3); SZ3 = 100h. H = 0 gives q = 0, so SXY2 = 0, and DQB = 0
+/// gives IR0 = 0: FLAG is 0.
+#[test]
+fn rtps_sf0_ir3_saturates_while_depth_in_range() {
+    for lm in [false, true] {
+        let mut gte = Gte::new();
+        gte.write_control(0, packed(0x1000, 0));
+        gte.write_control(2, packed(0x1000, 0));
+        gte.write_control(4, 0x1000);
+        gte.write_data(0, 0);
+        gte.write_data(1, 0x100);
+        gte.execute(cmd(Opcode::Rtps, false, lm));
+        assert_eq!(gte.read_data(25), 0, "MAC1");
+        assert_eq!(gte.read_data(26), 0, "MAC2");
+        assert_eq!(gte.read_data(27), 0x10_0000, "MAC3");
+        assert_eq!(gte.read_data(9), 0, "IR1");
+        assert_eq!(gte.read_data(10), 0, "IR2");
+        assert_eq!(gte.read_data(11), 0x7FFF, "IR3");
+        assert_eq!(gte.read_data(19), 0x100, "SZ3");
+        assert_eq!(gte.read_data(14), 0, "SXY2");
+        assert_eq!(gte.read_data(8), 0, "IR0");
+        assert_eq!(gte.read_control(31), 0, "FLAG");
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 

@@ -35,12 +35,8 @@ impl Gte {
         const MODE: u8 = BY_MODE;
         #[cfg(not(feature = "divide-modes"))]
         const MODE: u8 = UNR;
-        // One copy per sf: the MAC shifts are then by a constant.
-        if shift == 0 {
-            self.project_vertex::<MODE>(0, 0, lm, true);
-        } else {
-            self.project_vertex::<MODE>(0, 12, lm, true);
-        }
+        // One copy per sf and lm: the MAC shifts and IR's range are then constants.
+        with_constant_sf_lm!(shift, lm, self.project_vertex::<MODE>(0, shift, lm, true));
     }
 
     /// RTPT: project V0, V1, V2 in order; depth cue from the last only.
@@ -89,17 +85,22 @@ impl Gte {
         let mac3 = self.set_mac(3, acc[2], shift);
         let z = acc[2] >> 12;
         // IR1-3 inside their range and z inside 0..=7FFFh (inside the IR3 flag's lm=0 range
-        // and SZ3's range both) is one test; otherwise the steps saturate one by one.
+        // and SZ3's range both) is one test; otherwise the steps saturate one by one. With
+        // sf = 1, MAC3 is z, so z's test is MAC3's too.
         let (ir_min, ir_span) = ir_range(lm);
-        let (ir1, ir2, sz3) =
-            if all_within_32([mac1, mac2, mac3], ir_min, ir_span) & (z as u64 <= 0x7FFF) {
-                self.regs.set_ir(1, mac1 as i16);
-                self.regs.set_ir(2, mac2 as i16);
-                self.regs.set_ir(3, mac3 as i16);
-                (mac1 as i16, mac2 as i16, z)
-            } else {
-                self.saturate_projection(mac1, mac2, mac3, z, lm)
-            };
+        let in_range = if shift == 12 {
+            all_within_32([mac1, mac2], ir_min, ir_span)
+        } else {
+            all_within_32([mac1, mac2, mac3], ir_min, ir_span)
+        };
+        let (ir1, ir2, sz3) = if in_range & (z as u64 <= 0x7FFF) {
+            self.regs.set_ir(1, mac1 as i16);
+            self.regs.set_ir(2, mac2 as i16);
+            self.regs.set_ir(3, mac3 as i16);
+            (mac1 as i16, mac2 as i16, z)
+        } else {
+            self.saturate_projection(mac1, mac2, mac3, z, lm)
+        };
         self.regs.push_sz(sz3 as u16);
         // Divide (step 5).
         let (h, sz3) = (self.regs.h(), sz3 as u16);
