@@ -8,6 +8,8 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use gte::{Command, Gte, MatrixSel, Opcode, TranslationSel, VectorSel};
 use std::hint::black_box;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::time::Instant;
 
 /// A typical set-up: rotation, translation in front of the camera, projection, lights,
 /// colours (values a PS1 program loads with CTC2).
@@ -86,20 +88,66 @@ fn word(op: Opcode, lm: bool) -> u32 {
     .word()
 }
 
-/// Benchmark `op` as an emulator runs it: per call, MTC2 of `writes` (register, value) pairs
-/// made from a random word ahead of time (an emulator takes them from CPU registers), the
-/// command, then MFC2 of `reads` and CFC2 of FLAG. A second row, `…/registers only`, does the
-/// same register traffic without the command: the share of the per-call time that is register
-/// access rather than the command.
-fn run<const N: usize>(
+/// Where each call's result goes: one store per call, which the compiler must make and
+/// cannot use as scratch space on the way.
+static SINK: AtomicU32 = AtomicU32::new(0);
+
+/// `iters` calls as an emulator makes them: per call, MTC2 of call `i & 1023`'s `writes`,
+/// the command (when `execute`), MFC2 of `reads` and CFC2 of FLAG, the sum stored to
+/// [`SINK`]. One function with the body in line, the read list fixed in length and one store
+/// of the result per call: the shape of the C++ loop that times Mednafen's GTE for
+/// docs/performance.md ("GTE commands"). A closure handed to `Bencher::iter`, a read list
+/// walked at run time and a result summed in memory cost wobble's side time that the other
+/// side's loop did not ("The timed loop", in that document).
+#[inline(never)]
+fn emulator_loop<const N: usize, const R: usize>(
+    gte: &mut Gte,
+    calls: &[[(u32, u32); N]; 1024],
+    reads: &[u32; R],
+    cmd: u32,
+    execute: bool,
+    iters: u64,
+    i: &mut usize,
+) {
+    for _ in 0..iters {
+        for &(reg, value) in &calls[*i & 1023] {
+            gte.write_data(black_box(reg), value);
+        }
+        *i = i.wrapping_add(1);
+        let mut acc = if execute {
+            gte.execute(black_box(cmd)).unwrap_or(0)
+        } else {
+            0
+        };
+        for &reg in reads {
+            acc = acc.wrapping_add(gte.read_data(black_box(reg)));
+        }
+        SINK.store(
+            acc.wrapping_add(gte.read_control(black_box(31))),
+            Ordering::Relaxed,
+        );
+    }
+}
+
+/// Benchmark `op` as an emulator runs it ([`emulator_loop`]): per call, MTC2 of `writes`
+/// (register, value) pairs made from a random word ahead of time (an emulator takes them
+/// from CPU registers), the command, then MFC2 of `reads` and CFC2 of FLAG. A second row,
+/// `…/registers only`, does the same register traffic without the command: the share of the
+/// per-call time that is register access rather than the command.
+fn run<const N: usize, const R: usize>(
     c: &mut Criterion,
     name: &str,
     op: Opcode,
     lm: bool,
     writes: impl Fn(u32) -> [(u32, u32); N],
-    reads: &[u32],
+    reads: &[u32; R],
 ) {
-    let calls: Vec<[(u32, u32); N]> = inputs(1024).into_iter().map(writes).collect();
+    let calls: Box<[[(u32, u32); N]; 1024]> = inputs(1024)
+        .into_iter()
+        .map(writes)
+        .collect::<Vec<_>>()
+        .try_into()
+        .expect("1024 calls");
     let cmd = word(op, lm);
     for execute in [true, false] {
         let mut gte = loaded();
@@ -110,20 +158,10 @@ fn run<const N: usize>(
             format!("{name}/registers only")
         };
         c.bench_function(&label, |b| {
-            b.iter(|| {
-                for &(reg, value) in &calls[i & 1023] {
-                    gte.write_data(black_box(reg), value);
-                }
-                i = i.wrapping_add(1);
-                let mut acc = if execute {
-                    gte.execute(black_box(cmd)).unwrap_or(0)
-                } else {
-                    0
-                };
-                for &reg in reads {
-                    acc = acc.wrapping_add(gte.read_data(black_box(reg)));
-                }
-                acc.wrapping_add(gte.read_control(black_box(31)))
+            b.iter_custom(|iters| {
+                let start = Instant::now();
+                emulator_loop(&mut gte, &calls, reads, cmd, execute, iters, &mut i);
+                start.elapsed()
             })
         });
     }
