@@ -213,7 +213,11 @@ impl Gte {
     ///
     /// The opcode dispatch, RTPS and the short commands compile into the caller (an
     /// emulator's COP2 handler); the long ones (RTPT, the lighting commands) stay calls. Each
-    /// dispatch arm extracts the sf and lm bits it uses and writes FLAG itself.
+    /// dispatch arm extracts the sf and lm bits it uses and writes FLAG itself. Wrapped in a
+    /// function the compiler may not inline (`#[inline(never)]`, a foreign-function layer),
+    /// every call pays for that function's entry and exit: in one measurement the short
+    /// commands went from 2.2-3.2x Mednafen's speed to 1.3-1.8x (docs/performance.md, "What
+    /// the comparison assumes").
     #[inline(always)]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let c = Command::new(command);
