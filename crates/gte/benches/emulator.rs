@@ -95,10 +95,11 @@ static SINK: AtomicU32 = AtomicU32::new(0);
 /// `iters` calls as an emulator makes them: per call, MTC2 of call `i & 1023`'s `writes`,
 /// the command (when `execute`), MFC2 of `reads` and CFC2 of FLAG, the sum stored to
 /// [`SINK`]. One function with the body in line, the read list fixed in length and one store
-/// of the result per call: the shape of the C++ loop that times Mednafen's GTE for
-/// docs/performance.md ("GTE commands"). A closure handed to `Bencher::iter`, a read list
-/// walked at run time and a result summed in memory cost wobble's side time that the other
-/// side's loop did not ("The timed loop", in that document).
+/// of the result per call: the shape of the C++ loop that times Mednafen's GTE
+/// (docs/performance.md, "The comparison with Mednafen"). A closure handed to
+/// `Bencher::iter`, a read list walked at run time and a result summed in memory cost
+/// wobble's side time that the other side's loop did not ("The timed loop", in that
+/// document).
 #[inline(never)]
 fn emulator_loop<const N: usize, const R: usize>(
     gte: &mut Gte,
