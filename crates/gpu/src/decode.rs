@@ -2,17 +2,19 @@
 //! the primitives it hands the rasterizer and what the rasterizer does with each (drawn,
 //! or dropped and why), and the VRAM it may write.
 //!
-//! Decoding uses the packet-length rule, field decoders and primitive builders that GP0
-//! itself runs (docs/hardware/gpu.md §2), and the drop tests are the rasterizer's own
-//! (the rasterizer's `classify_triangle` and friends), so a decoded command describes
-//! exactly what [`Gpu::gp0`] does with it. Decoding never changes the GPU.
+//! Decoding uses the command table ([`crate::command`]), field decoders and primitive
+//! builders that GP0 itself runs (docs/hardware/gpu.md §2), and the drop tests are the
+//! rasterizer's own (the rasterizer's `classify_triangle` and friends), so a decoded command
+//! describes exactly what [`Gpu::gp0`] does with it. Decoding never changes the GPU.
 //!
 //! ```
+//! use gpu::command;
+//! use gpu::decode::Kind;
 //! let mut gpu = gpu::Gpu::new();
 //! gpu.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
 //! let words = [0x2000_00FF, 0x0000_0000, 0x0000_0040, 0x0040_0000];
 //! let decoded = gpu.decode_gp0(&words);
-//! assert_eq!(decoded.kind, gpu::decode::Kind::Polygon);
+//! assert!(matches!(decoded.kind, Kind::Gp0(command::Kind::Polygon(_))));
 //! assert_eq!(decoded.name, "F3 polygon");
 //! assert!(decoded.primitives[0].coverage().dropped().is_none());
 //! ```
@@ -22,75 +24,63 @@ use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
 
+use crate::command::{self, Command, LineOp, MAX_PACKET, PolygonOp, RectangleOp, Tail};
 use crate::command_stream::{Port, StreamCommand};
-use crate::gp0::{
-    self, MAX_PACKET, Polyline, PolylineStep, is_terminator, line_packet, packet_len,
-    polygon_packet, rectangle_packet,
-};
+use crate::gp0::{self, Polyline, PolylineStep, line_packet, polygon_packet, rectangle_packet};
 /// The primitives a decoded command carries, as the rasterizer receives them.
 pub use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex};
 /// What a primitive covers, or why the hardware drops it.
 pub use crate::rasterizer::{Coverage, DropReason, PixelBounds};
 use crate::rasterizer::{classify_line, classify_rectangle, classify_triangle};
 use crate::state::{BlendMode, DrawState, TextureDepth};
-use crate::transfer::TransferRect;
+use crate::transfer::{FillRect, TransferRect};
 use crate::{Gpu, VRAM_HEIGHT, VRAM_WIDTH};
 
-/// The kind of a GP0 or GP1 command (docs/hardware/gpu.md §2, §8, §9).
+/// What a traced command is (docs/hardware/gpu.md §2, §9).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Kind {
-    /// GP0 00h, 03h-1Eh, E0h, E7h-FFh: no operation.
-    Nop,
-    /// GP0 01h: invalidate the CLUT cache.
-    ClearCache,
-    /// GP0 02h: fill a rectangle (§8).
-    Fill,
-    /// GP0 1Fh: raise the GPU IRQ.
-    Irq,
-    /// GP0 20h-3Fh: triangle or quad (§3).
-    Polygon,
-    /// GP0 40h-5Fh: a line, or a polyline when bit 27 is set (§4).
-    Line,
-    /// GP0 60h-7Fh: rectangle (sprite) (§5).
-    Rectangle,
-    /// GP0 80h-9Fh: VRAM-to-VRAM copy (§8).
-    VramCopy,
-    /// GP0 A0h-BFh: CPU-to-VRAM transfer with its data words (§8).
-    CpuToVram,
-    /// GP0 C0h-DFh: VRAM-to-CPU transfer (§8).
-    VramToCpu,
-    /// GP0 E1h: draw mode (§2).
-    DrawMode,
-    /// GP0 E2h: texture window (§2).
-    TextureWindow,
-    /// GP0 E3h: drawing area top-left (§2).
-    AreaTopLeft,
-    /// GP0 E4h: drawing area bottom-right (§2).
-    AreaBottomRight,
-    /// GP0 E5h: drawing offset (§2).
-    DrawingOffset,
-    /// GP0 E6h: mask bit settings (§2, §6).
-    MaskBits,
+    /// A GP0 command, as its row of the command table gives it.
+    Gp0(command::Kind),
+    /// A GP1 (display control) command (§9).
+    Gp1,
     /// GP0 words that continue a packet begun before (the GPU was not at a packet start).
     Continuation,
-    /// A GP1 (display control) command (§9).
+}
+
+/// The broad class of a command, for filtering.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Polygons, lines and rectangles.
+    Draw,
+    /// Fills, copies and transfers between VRAM and the CPU.
+    Transfer,
+    /// The drawing environment, GP0(E1h)-(E6h).
+    Environment,
+    /// GP1 display control.
     Display,
+    /// Everything else: no operation, CLUT cache, IRQ, continuations.
+    Other,
 }
 
 impl Kind {
-    /// Broad class for filtering: `draw`, `transfer`, `environment`, `display` or `other`.
-    pub fn class(self) -> &'static str {
+    /// The command's class.
+    pub fn class(self) -> Class {
+        use command::Kind as Gp0;
         match self {
-            Kind::Polygon | Kind::Line | Kind::Rectangle => "draw",
-            Kind::Fill | Kind::VramCopy | Kind::CpuToVram | Kind::VramToCpu => "transfer",
-            Kind::DrawMode
-            | Kind::TextureWindow
-            | Kind::AreaTopLeft
-            | Kind::AreaBottomRight
-            | Kind::DrawingOffset
-            | Kind::MaskBits => "environment",
-            Kind::Display => "display",
-            Kind::Nop | Kind::ClearCache | Kind::Irq | Kind::Continuation => "other",
+            Kind::Gp0(Gp0::Polygon(_) | Gp0::Line(_) | Gp0::Rectangle(_)) => Class::Draw,
+            Kind::Gp0(Gp0::Fill | Gp0::VramCopy | Gp0::CpuToVram | Gp0::VramToCpu) => {
+                Class::Transfer
+            }
+            Kind::Gp0(
+                Gp0::DrawMode
+                | Gp0::TextureWindow
+                | Gp0::AreaTopLeft
+                | Gp0::AreaBottomRight
+                | Gp0::DrawingOffset
+                | Gp0::MaskBits,
+            ) => Class::Environment,
+            Kind::Gp1 => Class::Display,
+            Kind::Gp0(Gp0::Nop | Gp0::ClearCache | Gp0::Irq) | Kind::Continuation => Class::Other,
         }
     }
 }
@@ -201,8 +191,9 @@ pub struct Truncation {
 pub struct Decoded {
     /// The command's kind.
     pub kind: Kind,
-    /// Short name, e.g. `GT4 polygon`, `F2 line`, `16x16 sprite`, `draw mode`.
-    pub name: String,
+    /// Short name, e.g. `GT4 polygon`, `F2 line`, `16x16 sprite`, `draw mode` (a GP0
+    /// command's from the command table).
+    pub name: &'static str,
     /// Fields, in packet order.
     pub fields: Vec<Field>,
     /// Primitives handed to the rasterizer, each with its verdict. Empty for a truncated
@@ -216,10 +207,10 @@ pub struct Decoded {
 }
 
 impl Decoded {
-    fn new(kind: Kind, name: impl Into<String>) -> Self {
+    fn new(kind: Kind, name: &'static str) -> Self {
         Self {
             kind,
-            name: name.into(),
+            name,
             fields: Vec::new(),
             primitives: Vec::new(),
             writes: None,
@@ -242,42 +233,47 @@ impl Decoded {
 }
 
 /// How many words a GP0 command starting at `words[0]` consumes (docs/hardware/gpu.md §2, §8): the
-/// packet, plus a CPU-to-VRAM transfer's data words, plus a polyline's further vertices
-/// and terminator. `Err` carries the count needed (`None` for an unterminated polyline)
-/// when `words` ends first.
+/// packet, plus what follows it ([`Tail`]): a CPU-to-VRAM transfer's data words, a
+/// polyline's further vertices and terminator. `Err` carries the count needed (`None` for
+/// an unterminated polyline) when `words` ends first.
 pub fn command_len(words: &[u32]) -> Result<usize, Option<usize>> {
     let Some(&cmd) = words.first() else {
         return Err(Some(1));
     };
-    let len = packet_len(cmd);
+    let row = Command::of(cmd);
+    let len = row.words;
     if words.len() < len {
         return Err(Some(len));
     }
-    match cmd >> 24 {
-        0xA0..=0xBF => {
-            let rect = TransferRect::decode(words[1], words[2]);
-            let total = len + (rect.pixels() as usize).div_ceil(2);
+    match row.tail {
+        Tail::PixelData => {
+            let total = len + pixel_data_words(words);
             if words.len() < total {
                 Err(Some(total))
             } else {
                 Ok(total)
             }
         }
-        0x40..=0x5F if cmd & (1 << 27) != 0 => {
-            // Further vertices: (colour,) position; the terminator sits where a vertex's
-            // first word would.
-            let per_vertex = if cmd & (1 << 28) != 0 { 2 } else { 1 };
+        Tail::PolylineVertices => {
+            let per_vertex = LineOp::from_op(row.op).words_per_vertex();
             let mut i = len;
             loop {
                 let &w = words.get(i).ok_or(None)?;
-                if is_terminator(w) {
+                if command::is_terminator(w) {
                     return Ok(i + 1);
                 }
                 i += per_vertex;
             }
         }
-        _ => Ok(len),
+        Tail::None => Ok(len),
     }
+}
+
+/// The data words of the CPU-to-VRAM transfer whose packet starts `words` (at least its
+/// three words): two pixels a word (docs/hardware/gpu.md §8).
+fn pixel_data_words(words: &[u32]) -> usize {
+    let word = |i: usize| words.get(i).copied().unwrap_or(0);
+    (TransferRect::decode(word(1), word(2)).pixels() as usize).div_ceil(2)
 }
 
 fn hex_color(rgb: [u8; 3]) -> String {
@@ -409,38 +405,33 @@ impl Gpu {
 }
 
 fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) -> Decoded {
+    use command::Kind as Gp0;
     let cmd = words.first().copied().unwrap_or(0);
-    let op = cmd >> 24;
-    let len = packet_len(cmd);
+    let row = Command::of(cmd);
+    let len = row.words;
     let mut packet = [0u32; MAX_PACKET];
     for (slot, w) in packet.iter_mut().zip(words) {
         *slot = *w;
     }
     let complete = words.len() >= len;
-    let mut d = match op {
-        0x01 => Decoded::new(Kind::ClearCache, "clear cache"),
-        0x02 => {
-            let mut d = Decoded::new(Kind::Fill, "fill");
-            let (pos, size) = (packet[1], packet[2]);
-            // docs/hardware/gpu.md §8: x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh.
-            let x = (pos & 0x3F0) as usize;
-            let y = ((pos >> 16) & 0x1FF) as usize;
-            let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
-            let h = ((size >> 16) & 0x1FF) as usize;
+    let mut d = Decoded::new(Kind::Gp0(row.kind), row.name);
+    match row.kind {
+        Gp0::Fill => {
+            let r = FillRect::decode(packet[1], packet[2]);
+            let (x, y, w, h) = (r.x as usize, r.y as usize, r.w as usize, r.h as usize);
             d.field("color", hex_color(crate::color::unpack888(cmd)));
             d.field("position", format!("({x}, {y})"));
             d.field("size", format!("{w}x{h}"));
             if complete {
                 d.writes = wrapped_bounds(x, y, w, h);
             }
-            d
         }
-        0x1F => Decoded::new(Kind::Irq, "IRQ"),
-        0x20..=0x3F => polygon(&packet, draw, texture_disable_allowed, complete),
-        0x40..=0x5F => line(words, &packet, draw, complete),
-        0x60..=0x7F => rectangle(&packet, draw, texture_disable_allowed, complete),
-        0x80..=0x9F => {
-            let mut d = Decoded::new(Kind::VramCopy, "VRAM copy");
+        Gp0::Polygon(op) => polygon(&mut d, op, &packet, draw, texture_disable_allowed, complete),
+        Gp0::Line(op) => line(&mut d, op, words, &packet, draw, complete),
+        Gp0::Rectangle(op) => {
+            rectangle(&mut d, op, &packet, draw, texture_disable_allowed, complete)
+        }
+        Gp0::VramCopy => {
             let src = TransferRect::decode(packet[1], packet[3]);
             let dst = TransferRect::decode(packet[2], packet[3]);
             d.field("source", format!("({}, {})", src.x, src.y));
@@ -448,13 +439,11 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
             if complete {
                 d.writes = wrapped_bounds(dst.x.into(), dst.y.into(), dst.w.into(), dst.h.into());
             }
-            d
         }
-        0xA0..=0xBF => {
-            let mut d = Decoded::new(Kind::CpuToVram, "CPU to VRAM");
+        Gp0::CpuToVram => {
             let r = TransferRect::decode(packet[1], packet[2]);
             transfer_fields(&mut d, "destination", &r);
-            let data = (r.pixels() as usize).div_ceil(2);
+            let data = pixel_data_words(&packet);
             d.field("data words", format!("{data}"));
             if complete {
                 // Data words already received are written even if the rest never comes.
@@ -468,17 +457,19 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
                     });
                 }
             }
-            d
         }
-        0xC0..=0xDF => {
-            let mut d = Decoded::new(Kind::VramToCpu, "VRAM to CPU");
+        Gp0::VramToCpu => {
             let r = TransferRect::decode(packet[1], packet[2]);
             transfer_fields(&mut d, "source", &r);
-            d
         }
-        0xE1..=0xE6 => environment(cmd, draw, texture_disable_allowed),
-        _ => Decoded::new(Kind::Nop, "NOP"),
-    };
+        Gp0::DrawMode
+        | Gp0::TextureWindow
+        | Gp0::AreaTopLeft
+        | Gp0::AreaBottomRight
+        | Gp0::DrawingOffset
+        | Gp0::MaskBits => environment(&mut d, row.kind, cmd, draw, texture_disable_allowed),
+        Gp0::Nop | Gp0::ClearCache | Gp0::Irq => {}
+    }
     if !complete && d.truncated.is_none() {
         d.truncated = Some(Truncation {
             have: words.len(),
@@ -489,22 +480,15 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
 }
 
 fn polygon(
+    d: &mut Decoded,
+    op: PolygonOp,
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
     texture_disable_allowed: bool,
     complete: bool,
-) -> Decoded {
-    let cmd = p[0];
-    let packet = polygon_packet(p, draw, texture_disable_allowed);
-    let quad = cmd & (1 << 27) != 0;
-    let gouraud = cmd & (1 << 28) != 0;
-    let name = format!(
-        "{}{}{} polygon",
-        if gouraud { "G" } else { "F" },
-        if packet.has_uv { "T" } else { "" },
-        if quad { 4 } else { 3 }
-    );
-    let mut d = Decoded::new(Kind::Polygon, name);
+) {
+    let packet = polygon_packet(op, p, draw, texture_disable_allowed);
+    let gouraud = op.gouraud;
     let tri = &packet.first;
     let mut verts: Vec<Vertex> = tri.vertices.to_vec();
     if let Some(second) = &packet.second {
@@ -516,11 +500,11 @@ fn polygon(
         if i == 0 || gouraud {
             d.field(COLORS[i & 3], hex_color(v.color));
         }
-        d.field(NAMES[i & 3], vertex_text(v, packet.has_uv));
+        d.field(NAMES[i & 3], vertex_text(v, op.textured));
     }
     if let Some(t) = &tri.texture {
-        texture_fields(&mut d, t);
-    } else if packet.has_uv {
+        texture_fields(d, t);
+    } else if op.textured {
         d.field("texture", "disabled (E1.11)".into());
     }
     if let Some(b) = tri.blend {
@@ -549,20 +533,18 @@ fn polygon(
             ));
         }
     }
-    d
 }
 
-fn line(words: &[u32], p: &[u32; MAX_PACKET], draw: &DrawState, complete: bool) -> Decoded {
-    let cmd = p[0];
-    let gouraud = cmd & (1 << 28) != 0;
-    let poly = cmd & (1 << 27) != 0;
-    let first = line_packet(p, draw);
-    let name = format!(
-        "{}{}",
-        if gouraud { "G" } else { "F" },
-        if poly { " polyline" } else { "2 line" }
-    );
-    let mut d = Decoded::new(Kind::Line, name);
+fn line(
+    d: &mut Decoded,
+    op: LineOp,
+    words: &[u32],
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    complete: bool,
+) {
+    let gouraud = op.gouraud;
+    let first = line_packet(op, p, draw);
     d.field("color 0", hex_color(first.vertices[0].color));
     d.field("vertex 0", vertex_text(&first.vertices[0], false));
     if gouraud {
@@ -583,13 +565,13 @@ fn line(words: &[u32], p: &[u32; MAX_PACKET], draw: &DrawState, complete: bool) 
         ]),
     );
     if !complete {
-        return d;
+        return;
     }
     d.push_primitive(Primitive::Line(first, classify_line(&first, &draw.area)));
-    if poly {
+    if op.polyline {
         let mut state = Polyline::new(first);
         let mut terminated = false;
-        for &w in words.iter().skip(packet_len(cmd)) {
+        for &w in words.iter().skip(op.words()) {
             match state.step(draw, w) {
                 PolylineStep::End => {
                     terminated = true;
@@ -610,31 +592,23 @@ fn line(words: &[u32], p: &[u32; MAX_PACKET], draw: &DrawState, complete: bool) 
             });
         }
     }
-    d
 }
 
 fn rectangle(
+    d: &mut Decoded,
+    op: RectangleOp,
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
     texture_disable_allowed: bool,
     complete: bool,
-) -> Decoded {
-    let cmd = p[0];
-    let rect = rectangle_packet(p, draw, texture_disable_allowed);
-    let size = match (cmd >> 27) & 3 {
-        0 => "variable",
-        1 => "1x1",
-        2 => "8x8",
-        _ => "16x16",
-    };
-    let textured = cmd & (1 << 26) != 0;
-    let name = format!("{size}{} sprite", if textured { " textured" } else { "" });
-    let mut d = Decoded::new(Kind::Rectangle, name);
+) {
+    let rect = rectangle_packet(op, p, draw, texture_disable_allowed);
+    let textured = op.textured;
     d.field("color", hex_color(rect.origin.color));
     d.field("position", vertex_text(&rect.origin, textured));
     d.field("size", format!("{}x{}", rect.width, rect.height));
     if let Some(t) = &rect.texture {
-        texture_fields(&mut d, t);
+        texture_fields(d, t);
     } else if textured {
         d.field("texture", "disabled (E1.11)".into());
     }
@@ -658,17 +632,22 @@ fn rectangle(
             classify_rectangle(&rect, &draw.area),
         ));
     }
-    d
 }
 
-fn environment(cmd: u32, draw: &DrawState, texture_disable_allowed: bool) -> Decoded {
+fn environment(
+    d: &mut Decoded,
+    kind: command::Kind,
+    cmd: u32,
+    draw: &DrawState,
+    texture_disable_allowed: bool,
+) {
+    use command::Kind as Gp0;
     let mut after = *draw;
     gp0::apply_environment(&mut after, cmd, texture_disable_allowed);
     let yes_no = |b: bool| if b { "on" } else { "off" }.into();
-    match cmd >> 24 {
-        0xE1 => {
+    match kind {
+        Gp0::DrawMode => {
             let m = after.mode;
-            let mut d = Decoded::new(Kind::DrawMode, "draw mode");
             d.field(
                 "texpage",
                 format!("({}, {}) {}", m.page_x, m.page_y, depth_name(m.depth)),
@@ -679,65 +658,49 @@ fn environment(cmd: u32, draw: &DrawState, texture_disable_allowed: bool) -> Dec
             d.field("texture disable", yes_no(m.texture_disable));
             d.field("flip X", yes_no(m.flip_x));
             d.field("flip Y", yes_no(m.flip_y));
-            d
         }
-        0xE2 => {
+        Gp0::TextureWindow => {
             let w = after.window;
-            let mut d = Decoded::new(Kind::TextureWindow, "texture window");
             d.field("mask", format!("({}, {}) x8", w.mask_x, w.mask_y));
             d.field("offset", format!("({}, {}) x8", w.offset_x, w.offset_y));
-            d
         }
-        0xE3 => {
-            let mut d = Decoded::new(Kind::AreaTopLeft, "drawing area top-left");
-            d.field(
-                "top-left",
-                format!("({}, {})", after.area.left, after.area.top),
-            );
-            d
-        }
-        0xE4 => {
-            let mut d = Decoded::new(Kind::AreaBottomRight, "drawing area bottom-right");
-            d.field(
-                "bottom-right",
-                format!("({}, {})", after.area.right, after.area.bottom),
-            );
-            d
-        }
-        0xE5 => {
-            let mut d = Decoded::new(Kind::DrawingOffset, "drawing offset");
-            d.field(
-                "offset",
-                format!("({}, {})", after.offset_x, after.offset_y),
-            );
-            d
-        }
-        _ => {
-            let mut d = Decoded::new(Kind::MaskBits, "mask bits");
+        Gp0::AreaTopLeft => d.field(
+            "top-left",
+            format!("({}, {})", after.area.left, after.area.top),
+        ),
+        Gp0::AreaBottomRight => d.field(
+            "bottom-right",
+            format!("({}, {})", after.area.right, after.area.bottom),
+        ),
+        Gp0::DrawingOffset => d.field(
+            "offset",
+            format!("({}, {})", after.offset_x, after.offset_y),
+        ),
+        Gp0::MaskBits => {
             d.field("set bit 15", yes_no(after.mask.set));
             d.field("skip masked", yes_no(after.mask.check));
-            d
         }
+        _ => {}
     }
 }
 
 fn decode_gp1(word: u32) -> Decoded {
     let op = word >> 24;
     let name = match op {
-        0x00 => "reset",
-        0x01 => "reset command buffer",
-        0x02 => "acknowledge IRQ",
-        0x03 => "display enable",
-        0x04 => "DMA direction",
-        0x05 => "display start",
-        0x06 => "horizontal display range",
-        0x07 => "vertical display range",
-        0x08 => "display mode",
-        0x09 => "allow texture disable",
-        0x10..=0x1F => "get GPU info",
-        _ => "unused GP1",
+        0x00 => "GP1 reset",
+        0x01 => "GP1 reset command buffer",
+        0x02 => "GP1 acknowledge IRQ",
+        0x03 => "GP1 display enable",
+        0x04 => "GP1 DMA direction",
+        0x05 => "GP1 display start",
+        0x06 => "GP1 horizontal display range",
+        0x07 => "GP1 vertical display range",
+        0x08 => "GP1 display mode",
+        0x09 => "GP1 allow texture disable",
+        0x10..=0x1F => "GP1 get GPU info",
+        _ => "GP1 unused GP1",
     };
-    let mut d = Decoded::new(Kind::Display, format!("GP1 {name}"));
+    let mut d = Decoded::new(Kind::Gp1, name);
     // Field layouts: docs/hardware/gpu.md §9 (psx-spx "GPU Display Control Commands").
     match op {
         0x03 => d.field("display", if word & 1 != 0 { "off" } else { "on" }.into()),
@@ -768,22 +731,20 @@ fn complete(words: &[u32]) -> bool {
     let (Some(&cmd), n) = (words.first(), words.len()) else {
         return false;
     };
-    let len = packet_len(cmd);
+    let row = Command::of(cmd);
+    let len = row.words;
     if n < len {
         return false;
     }
-    match cmd >> 24 {
-        0xA0..=0xBF => {
-            let rect = TransferRect::decode(words[1], words[2]);
-            n >= len + (rect.pixels() as usize).div_ceil(2)
-        }
-        0x40..=0x5F if cmd & (1 << 27) != 0 => {
-            let per_vertex = if cmd & (1 << 28) != 0 { 2 } else { 1 };
+    match row.tail {
+        Tail::PixelData => n >= len + pixel_data_words(words),
+        Tail::PolylineVertices => {
+            let per_vertex = LineOp::from_op(row.op).words_per_vertex();
             n > len
                 && (n - 1 - len).is_multiple_of(per_vertex)
-                && words.last().is_some_and(|&w| is_terminator(w))
+                && words.last().is_some_and(|&w| command::is_terminator(w))
         }
-        _ => true,
+        Tail::None => true,
     }
 }
 
@@ -926,7 +887,16 @@ mod tests {
     #[test]
     fn command_lengths_follow_the_word_counts_of_section_2() {
         // F3=4, F4=5, G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 (docs/hardware/gpu.md §2).
-        for (op, n) in crate::gp0::POLYGON_WORDS {
+        for (op, n) in [
+            (0x20, 4),
+            (0x28, 5),
+            (0x30, 6),
+            (0x38, 8),
+            (0x24, 7),
+            (0x2C, 9),
+            (0x34, 9),
+            (0x3C, 12),
+        ] {
             let words = [op << 24; 12];
             assert_eq!(command_len(&words), Ok(n), "op {op:02x}");
         }
@@ -1057,7 +1027,7 @@ mod tests {
             got.push((
                 c.line,
                 c.last_line,
-                c.decoded.kind,
+                c.decoded.name,
                 c.words.len(),
                 c.decoded.truncated,
             ));
@@ -1065,16 +1035,16 @@ mod tests {
         assert_eq!(
             got,
             [
-                (1, 1, Kind::Display, 1, None),
-                (2, 2, Kind::AreaTopLeft, 1, None),
-                (3, 3, Kind::AreaBottomRight, 1, None),
-                (4, 6, Kind::Fill, 3, None),
-                (7, 8, Kind::Line, 5, None),
-                (8, 8, Kind::DrawingOffset, 1, None),
+                (1, 1, "GP1 reset", 1, None),
+                (2, 2, "drawing area top-left", 1, None),
+                (3, 3, "drawing area bottom-right", 1, None),
+                (4, 6, "fill", 3, None),
+                (7, 8, "F polyline", 5, None),
+                (8, 8, "drawing offset", 1, None),
                 (
                     9,
                     9,
-                    Kind::Polygon,
+                    "F3 polygon",
                     2,
                     Some(Truncation {
                         have: 2,

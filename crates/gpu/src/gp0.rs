@@ -1,7 +1,9 @@
 //! GP0: packet assembly (words arrive one at a time, split anywhere), decoding of render
 //! commands into primitives, environment commands E1h-E6h, and the transfer commands
-//! (docs/hardware/gpu.md §2, §8).
+//! (docs/hardware/gpu.md §2, §8). What each command byte is and where its words sit comes
+//! from the command table ([`crate::command`]).
 
+use crate::command::{self, Command, Kind, LineOp, MAX_PACKET, PolygonOp, RectangleOp, SpriteSize};
 use crate::drawing::{Cost, units_to_gpu};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
@@ -9,28 +11,27 @@ use crate::rasterizer::{
     draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
-use crate::transfer::{self, ReadTransfer, TransferRect, WriteTransfer};
+use crate::transfer::{self, FillRect, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
-/// `$self.$f::<GOURAUD, QUAD, UV>($args)` with the polygon command word `$cmd`'s bits 28,
-/// 27 and 26 as the const arguments (docs/hardware/gpu.md §2).
+/// `$f::<GOURAUD, QUAD, UV>($args)` (`$f` a function or `self.method`) with the polygon
+/// command `$op`'s Gouraud, quad and textured bits (28, 27, 26) as the const arguments
+/// (docs/hardware/gpu.md §2).
 macro_rules! by_polygon_shape {
-    ($cmd:expr, $self:ident . $f:ident ($($arg:expr),*)) => {
-        match ($cmd >> 26) & 7 {
-            0 => $self.$f::<false, false, false>($($arg),*),
-            1 => $self.$f::<false, false, true>($($arg),*),
-            2 => $self.$f::<false, true, false>($($arg),*),
-            3 => $self.$f::<false, true, true>($($arg),*),
-            4 => $self.$f::<true, false, false>($($arg),*),
-            5 => $self.$f::<true, false, true>($($arg),*),
-            6 => $self.$f::<true, true, false>($($arg),*),
-            _ => $self.$f::<true, true, true>($($arg),*),
+    ($op:expr, $($f:ident).+ ($($arg:expr),*)) => {{
+        let op: PolygonOp = $op;
+        match (op.gouraud, op.quad, op.textured) {
+            (false, false, false) => $($f).+::<false, false, false>($($arg),*),
+            (false, false, true) => $($f).+::<false, false, true>($($arg),*),
+            (false, true, false) => $($f).+::<false, true, false>($($arg),*),
+            (false, true, true) => $($f).+::<false, true, true>($($arg),*),
+            (true, false, false) => $($f).+::<true, false, false>($($arg),*),
+            (true, false, true) => $($f).+::<true, false, true>($($arg),*),
+            (true, true, false) => $($f).+::<true, true, false>($($arg),*),
+            (true, true, true) => $($f).+::<true, true, true>($($arg),*),
         }
-    };
+    }};
 }
-
-/// The longest fixed-size packet: a Gouraud textured quad, 12 words.
-pub(crate) const MAX_PACKET: usize = 12;
 
 /// What incoming GP0 words mean right now.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -94,7 +95,7 @@ impl Polyline {
     /// first word would be).
     pub(crate) fn step(mut self, draw: &DrawState, word: u32) -> PolylineStep {
         let expecting_first_word = !self.line.gouraud || self.pending_color.is_none();
-        if expecting_first_word && is_terminator(word) {
+        if expecting_first_word && command::is_terminator(word) {
             return PolylineStep::End;
         }
         if self.line.gouraud && self.pending_color.is_none() {
@@ -119,8 +120,6 @@ pub(crate) struct PolygonPacket {
     pub(crate) second: Option<Triangle>,
     /// The draw mode after the packet: a textured polygon's texpage attribute rewrites it.
     pub(crate) mode: DrawMode,
-    /// The command carries texture coordinates (bit 26), even if texturing is disabled.
-    pub(crate) has_uv: bool,
 }
 
 /// GP0 packet assembly state.
@@ -170,7 +169,7 @@ impl Gp0State {
         }
         match self.mode {
             Mode::Command => match self.buf.first() {
-                Some(&cmd) if self.len > 0 && self.len >= packet_len(cmd) => {
+                Some(&cmd) if self.len > 0 && self.len >= Command::of(cmd).words => {
                     Err("complete GP0 packet left unexecuted")
                 }
                 _ => Ok(()),
@@ -186,87 +185,16 @@ impl Gp0State {
     pub(crate) fn receiving_vertices(&self) -> bool {
         match self.mode {
             Mode::Polyline(_) => true,
-            Mode::Command => self.len != 0 && matches!(self.buf[0] >> 24, 0x20..=0x5F),
+            Mode::Command => {
+                self.len != 0
+                    && matches!(
+                        Command::of(self.buf[0]).kind,
+                        Kind::Polygon(_) | Kind::Line(_)
+                    )
+            }
             Mode::Write(_) => false,
         }
     }
-}
-
-/// Whether a command word occupies FIFO space: psx-spx ("GPU Other Commands") lists GP0(00h),
-/// its mirrors 04h-1Eh, E0h, E7h-EFh, and E3h-E5h as taking none.
-fn takes_fifo_space(cmd: u32) -> bool {
-    !matches!(cmd >> 24, 0x00 | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF)
-}
-
-/// Words in the packet a command word starts (docs/hardware/gpu.md §2): a function of the
-/// command byte alone, looked up.
-#[inline(always)]
-pub(crate) fn packet_len(cmd: u32) -> usize {
-    usize::from(PACKET_LEN[(cmd >> 24) as usize])
-}
-
-/// The fact sheet's word counts of the polygon packets, F3, F4, G3, G4, FT3, FT4, GT3 and GT4
-/// (docs/hardware/gpu.md §2), by command byte.
-#[cfg(test)]
-pub(crate) const POLYGON_WORDS: [(u32, usize); 8] = [
-    (0x20, 4),
-    (0x28, 5),
-    (0x30, 6),
-    (0x38, 8),
-    (0x24, 7),
-    (0x2C, 9),
-    (0x34, 9),
-    (0x3C, 12),
-];
-
-/// [`packet_len`] of each command byte.
-static PACKET_LEN: [u8; 256] = {
-    let mut t = [0u8; 256];
-    let mut op = 0;
-    while op < 256 {
-        t[op] = packet_len_of(op as u32);
-        op += 1;
-    }
-    t
-};
-
-/// Words in the packet command byte `op` starts (docs/hardware/gpu.md §2).
-const fn packet_len_of(op: u32) -> u8 {
-    let cmd = op << 24;
-    match op {
-        0x02 => 3,
-        0x20..=0x3F => {
-            let verts = if cmd & (1 << 27) != 0 { 4 } else { 3 };
-            let per_vertex = 1 + (cmd >> 26 & 1);
-            let colors = if cmd & (1 << 28) != 0 { verts - 1 } else { 0 };
-            (1 + verts * per_vertex + colors) as u8
-        }
-        0x40..=0x5F => {
-            if cmd & (1 << 28) != 0 {
-                4
-            } else {
-                3
-            }
-        }
-        0x60..=0x7F => {
-            let textured = cmd >> 26 & 1;
-            let variable = ((cmd >> 27) & 3 == 0) as u32;
-            (2 + textured + variable) as u8
-        }
-        0x80..=0x9F => 4,
-        0xA0..=0xDF => 3,
-        _ => 1,
-    }
-}
-
-/// Sign-extend the 11-bit field (docs/hardware/gpu.md §2).
-pub(crate) const fn sext11(v: u32) -> i32 {
-    ((v << 21) as i32) >> 21
-}
-
-/// The polyline terminator, tested where the next vertex's first word would be (docs/hardware/gpu.md §2).
-pub(crate) const fn is_terminator(word: u32) -> bool {
-    word & 0xF000_F000 == 0x5000_5000
 }
 
 impl DrawMode {
@@ -295,13 +223,13 @@ impl DrawMode {
 
 /// GP0(E1h)-(E6h): update the drawing environment (docs/hardware/gpu.md §2).
 pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_allowed: bool) {
-    match cmd >> 24 {
-        0xE1 => {
+    match Command::of(cmd).kind {
+        Kind::DrawMode => {
             let texture_disable = cmd & (1 << 11) != 0 && texture_disable_allowed;
             draw.mode = DrawMode::from_e1(cmd);
             draw.mode.texture_disable = texture_disable;
         }
-        0xE2 => {
+        Kind::TextureWindow => {
             let w = &mut draw.window;
             w.mask_x = (cmd & 0x1F) as u8;
             w.mask_y = (cmd >> 5 & 0x1F) as u8;
@@ -310,19 +238,19 @@ pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_
         }
         // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
         // "Modelled GPU version").
-        0xE3 => {
+        Kind::AreaTopLeft => {
             draw.area.left = (cmd & 0x3FF) as u16;
             draw.area.top = (cmd >> 10 & 0x3FF) as u16;
         }
-        0xE4 => {
+        Kind::AreaBottomRight => {
             draw.area.right = (cmd & 0x3FF) as u16;
             draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
         }
-        0xE5 => {
-            draw.offset_x = sext11(cmd & 0x7FF) as i16;
-            draw.offset_y = sext11(cmd >> 11 & 0x7FF) as i16;
+        Kind::DrawingOffset => {
+            draw.offset_x = command::sext11(cmd) as i16;
+            draw.offset_y = command::sext11(cmd >> 11) as i16;
         }
-        0xE6 => {
+        Kind::MaskBits => {
             draw.mask.set = cmd & 1 != 0;
             draw.mask.check = cmd & 2 != 0;
         }
@@ -358,118 +286,120 @@ fn second_triangle(first: &Triangle, fourth: Vertex) -> Triangle {
     }
 }
 
-/// Decode a polygon packet (docs/hardware/gpu.md §2, §3).
+/// Decode a polygon packet of command `op` and shape `GOURAUD`, `QUAD`, `UV` (`op`'s bits
+/// 28, 27 and 26, so that each word's position is a constant) against `draw`, writing a textured
+/// polygon's texpage attribute into `draw.mode` (docs/hardware/gpu.md §2, §3). Returns the
+/// first triangle and a quad's fourth vertex; [`second_triangle`] makes the quad's second
+/// triangle from them.
+#[inline(always)]
+fn decode_polygon<const GOURAUD: bool, const QUAD: bool, const UV: bool>(
+    op: PolygonOp,
+    p: &[u32; MAX_PACKET],
+    draw: &mut DrawState,
+    texture_disable_allowed: bool,
+) -> (Triangle, Option<Vertex>) {
+    let (semi_transparent, raw) = (op.semi_transparent, op.raw);
+    let shape = PolygonOp {
+        gouraud: GOURAUD,
+        quad: QUAD,
+        textured: UV,
+        ..PolygonOp::default()
+    };
+    let word = |i: usize| p.get(i).copied().unwrap_or(0);
+    // (colour, position, texture word) of vertex n.
+    let at = |n: usize| -> (u32, u32, u32) {
+        let uv = if UV { word(shape.uv_word(n)) } else { 0 };
+        (word(shape.color_word(n)), word(shape.position_word(n)), uv)
+    };
+    let vertex = |draw: &DrawState, (rgb, pos, uv): (u32, u32, u32)| {
+        let mut v = Gpu::vertex(draw, pos, rgb);
+        v.u = uv as u8;
+        v.v = (uv >> 8) as u8;
+        v
+    };
+    let (w0, w1, w2) = (at(0), at(1), at(2));
+    let verts = [vertex(draw, w0), vertex(draw, w1), vertex(draw, w2)];
+    let fourth = QUAD.then(|| vertex(draw, at(3)));
+    if UV {
+        draw.mode.set_texpage(w1.2 >> 16);
+        if !texture_disable_allowed {
+            draw.mode.texture_disable = false;
+        }
+    }
+    let mode = &draw.mode;
+    let textured = UV && textures_enabled(mode, texture_disable_allowed);
+    let first = Triangle {
+        vertices: verts,
+        gouraud: GOURAUD,
+        texture: textured.then(|| texture(mode, w0.2 >> 16, raw)),
+        blend: semi_transparent.then_some(mode.blend),
+        dither: mode.dither && dither_applies(GOURAUD, textured, raw),
+    };
+    (first, fourth)
+}
+
+/// Decode a polygon packet against the drawing state it meets, which it leaves unchanged
+/// (docs/hardware/gpu.md §2, §3).
 pub(crate) fn polygon_packet(
+    op: PolygonOp,
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
     texture_disable_allowed: bool,
 ) -> PolygonPacket {
-    let cmd = p[0];
-    let gouraud = cmd & (1 << 28) != 0;
-    let quad = cmd & (1 << 27) != 0;
-    let has_uv = cmd & (1 << 26) != 0;
-    let semi = cmd & (1 << 25) != 0;
-    let raw = cmd & (1 << 24) != 0;
-    let count = if quad { 4 } else { 3 };
-    let mut mode = draw.mode;
-    let mut verts = [Vertex::default(); 4];
-    let mut clut_attr = 0;
-    let mut i = 1;
-    for (n, v) in verts.iter_mut().take(count).enumerate() {
-        let rgb = if n > 0 && gouraud {
-            i += 1;
-            p.get(i - 1).copied().unwrap_or(0)
-        } else {
-            cmd
-        };
-        *v = Gpu::vertex(draw, p.get(i).copied().unwrap_or(0), rgb);
-        i += 1;
-        if has_uv {
-            let uv = p.get(i).copied().unwrap_or(0);
-            i += 1;
-            v.u = uv as u8;
-            v.v = (uv >> 8) as u8;
-            match n {
-                0 => clut_attr = uv >> 16,
-                1 => mode.set_texpage(uv >> 16),
-                _ => {}
-            }
-        }
-    }
-    if has_uv && !texture_disable_allowed {
-        mode.texture_disable = false;
-    }
-    let textured = has_uv && textures_enabled(&mode, texture_disable_allowed);
-    let first = Triangle {
-        vertices: [verts[0], verts[1], verts[2]],
-        gouraud,
-        texture: textured.then(|| texture(&mode, clut_attr, raw)),
-        blend: semi.then_some(mode.blend),
-        dither: mode.dither && dither_applies(gouraud, textured, raw),
-    };
-    let second = quad.then(|| second_triangle(&first, verts[3]));
+    let mut after = *draw;
+    let (first, fourth) = by_polygon_shape!(
+        op,
+        decode_polygon(op, p, &mut after, texture_disable_allowed)
+    );
     PolygonPacket {
         first,
-        second,
-        mode,
-        has_uv,
+        second: fourth.map(|d| second_triangle(&first, d)),
+        mode: after.mode,
     }
 }
 
 /// Decode a line packet's first segment (docs/hardware/gpu.md §2, §4).
-pub(crate) fn line_packet(p: &[u32; MAX_PACKET], draw: &DrawState) -> Line {
-    let cmd = p[0];
-    let gouraud = cmd & (1 << 28) != 0;
-    let semi = cmd & (1 << 25) != 0;
-    let v0 = Gpu::vertex(draw, p[1], cmd);
-    let v1 = if gouraud {
-        Gpu::vertex(draw, p[3], p[2])
-    } else {
-        Gpu::vertex(draw, p[2], cmd)
-    };
+pub(crate) fn line_packet(op: LineOp, p: &[u32; MAX_PACKET], draw: &DrawState) -> Line {
+    let word = |i: usize| p.get(i).copied().unwrap_or(0);
+    let vertex = |n| Gpu::vertex(draw, word(op.position_word(n)), word(op.color_word(n)));
     Line {
-        vertices: [v0, v1],
-        gouraud,
-        blend: semi.then_some(draw.mode.blend),
+        vertices: [vertex(0), vertex(1)],
+        gouraud: op.gouraud,
+        blend: op.semi_transparent.then_some(draw.mode.blend),
         dither: draw.mode.dither,
     }
 }
 
 /// Decode a rectangle packet (docs/hardware/gpu.md §2, §5).
 pub(crate) fn rectangle_packet(
+    op: RectangleOp,
     p: &[u32; MAX_PACKET],
     draw: &DrawState,
     texture_disable_allowed: bool,
 ) -> Rectangle {
-    let cmd = p[0];
-    let textured = cmd & (1 << 26) != 0 && textures_enabled(&draw.mode, texture_disable_allowed);
-    let has_uv = cmd & (1 << 26) != 0;
-    let semi = cmd & (1 << 25) != 0;
-    let raw = cmd & (1 << 24) != 0;
-    let mut origin = Gpu::vertex(draw, p[1], cmd);
-    let mut i = 2;
+    let word = |i: usize| p.get(i).copied().unwrap_or(0);
+    let textured = op.textured && textures_enabled(&draw.mode, texture_disable_allowed);
+    let mut origin = Gpu::vertex(draw, word(op.position_word()), p[0]);
     let mut clut_attr = 0;
-    if has_uv {
-        origin.u = p[2] as u8;
-        origin.v = (p[2] >> 8) as u8;
-        clut_attr = p[2] >> 16;
-        i = 3;
+    if op.textured {
+        let uv = word(op.uv_word());
+        origin.u = uv as u8;
+        origin.v = (uv >> 8) as u8;
+        clut_attr = uv >> 16;
     }
-    let (width, height) = match (cmd >> 27) & 3 {
-        0 => {
-            let wh = p.get(i).copied().unwrap_or(0);
+    let (width, height) = match op.size {
+        SpriteSize::Variable => {
+            let wh = word(op.size_word());
             ((wh & 0x3FF) as u16, (wh >> 16 & 0x1FF) as u16)
         }
-        1 => (1, 1),
-        2 => (8, 8),
-        _ => (16, 16),
+        fixed => fixed.fixed().unwrap_or((0, 0)),
     };
     Rectangle {
         origin,
         width,
         height,
-        texture: textured.then(|| texture(&draw.mode, clut_attr, raw)),
-        blend: semi.then_some(draw.mode.blend),
+        texture: textured.then(|| texture(&draw.mode, clut_attr, op.raw)),
+        blend: op.semi_transparent.then_some(draw.mode.blend),
         flip_x: draw.mode.flip_x,
         flip_y: draw.mode.flip_y,
     }
@@ -502,13 +432,13 @@ impl Gpu {
             }
             Mode::Command => {
                 let len = self.gp0.len;
-                let head = if len == 0 { word } else { self.gp0.buf[0] };
-                self.drawing.receive(takes_fifo_space(head));
+                let head = Command::of(if len == 0 { word } else { self.gp0.buf[0] });
+                self.drawing.receive(head.takes_fifo_space);
                 if let Some(slot) = self.gp0.buf.get_mut(len) {
                     *slot = word;
                 }
                 self.gp0.len = len + 1;
-                if self.gp0.len >= packet_len(self.gp0.buf[0]) {
+                if self.gp0.len >= head.words {
                     let packet = self.gp0.buf;
                     self.gp0.len = 0;
                     Some(self.execute(&packet))
@@ -532,7 +462,8 @@ impl Gpu {
         let (Mode::Command, 0, Some(&head)) = (self.gp0.mode, self.gp0.len, words.first()) else {
             return 0;
         };
-        let n = packet_len(head);
+        let head = Command::of(head);
+        let n = head.words;
         if words.len() < n {
             return 0;
         }
@@ -555,7 +486,7 @@ impl Gpu {
         // complete a unit together.
         let cycles = units_to_gpu(units as u64);
         self.drawing
-            .receive_unit(takes_fifo_space(head), n as u32, cycles);
+            .receive_unit(head.takes_fifo_space, n as u32, cycles);
         n
     }
 
@@ -572,7 +503,7 @@ impl Gpu {
                 Some(PendingInput::Packet {
                     command,
                     received: self.gp0.len,
-                    expected: packet_len(command),
+                    expected: Command::of(command).words,
                 })
             }
             Mode::Command => None,
@@ -582,35 +513,52 @@ impl Gpu {
     /// Execute a complete packet; returns its cost in draw units.
     fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
-        match cmd >> 24 {
-            0x01 => self.clut.invalidate(),
-            0x02 => {
+        match Command::of(cmd).kind {
+            Kind::ClearCache => self.clut.invalidate(),
+            Kind::Fill => {
                 let rows = self.draw_rows();
-                let (w, h) = transfer::fill(&mut self.vram, cmd, p[1], p[2], rows);
+                let (w, h) =
+                    transfer::fill(&mut self.vram, cmd, FillRect::decode(p[1], p[2]), rows);
                 return Cost::fill(w, h);
             }
-            0x1F => {
+            Kind::Irq => {
                 if !self.irq {
                     self.irq_event = true;
                 }
                 self.irq = true;
             }
-            0x20 | 0x21 if !self.draw.mask.check => return self.flat_triangle(p),
-            0x30 | 0x31 if !self.draw.mask.check => return self.gouraud_triangle(p),
-            0x20..=0x3F => return self.polygon(p),
-            0x40..=0x5F => return self.line(p),
-            0x60..=0x7F => return self.rectangle(p),
-            0x80..=0x9F => {
+            // An untextured opaque triangle without the E6h mask check.
+            Kind::Polygon(op) if !(op.quad || op.textured || op.semi_transparent) => {
+                if self.draw.mask.check {
+                    return self.polygon(op, p);
+                }
+                return if op.gouraud {
+                    self.gouraud_triangle(p)
+                } else {
+                    self.flat_triangle(p)
+                };
+            }
+            Kind::Polygon(op) => return self.polygon(op, p),
+            Kind::Line(op) => return self.line(op, p),
+            Kind::Rectangle(op) => return self.rectangle(op, p),
+            Kind::VramCopy => {
                 let pixels = transfer::copy(&mut self.vram, p[1], p[2], p[3], self.draw.mask);
                 return Cost::copy(pixels);
             }
-            0xA0..=0xBF => {
+            Kind::CpuToVram => {
                 let rect = TransferRect::decode(p[1], p[2]);
                 self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
             }
-            0xC0..=0xDF => self.read = ReadTransfer::new(TransferRect::decode(p[1], p[2])),
-            0xE1..=0xE6 => apply_environment(&mut self.draw, cmd, self.texture_disable_allowed),
-            _ => {}
+            Kind::VramToCpu => self.read = ReadTransfer::new(TransferRect::decode(p[1], p[2])),
+            Kind::DrawMode
+            | Kind::TextureWindow
+            | Kind::AreaTopLeft
+            | Kind::AreaBottomRight
+            | Kind::DrawingOffset
+            | Kind::MaskBits => {
+                apply_environment(&mut self.draw, cmd, self.texture_disable_allowed)
+            }
+            Kind::Nop => {}
         }
         0
     }
@@ -629,97 +577,36 @@ impl Gpu {
 
     /// A vertex from a position word plus the drawing offset (docs/hardware/gpu.md §2).
     pub(crate) fn vertex(draw: &DrawState, pos: u32, rgb: u32) -> Vertex {
+        let (x, y) = command::position(pos);
         Vertex {
-            x: sext11(pos & 0x7FF) + draw.offset_x as i32,
-            y: sext11(pos >> 16 & 0x7FF) + draw.offset_y as i32,
+            x: x + draw.offset_x as i32,
+            y: y + draw.offset_y as i32,
             color: color::unpack888(rgb),
             u: 0,
             v: 0,
         }
     }
 
-    /// [`polygon_packet`] for the packet being executed: the texpage attribute's bits are
-    /// written into the draw mode in place (docs/hardware/gpu.md §2), and the vertices are
-    /// decoded from fixed word positions. Returns the first triangle and a quad's fourth
-    /// vertex; [`second_triangle`] makes the quad's second triangle from them.
-    /// `GOURAUD`, `QUAD` and `UV` are the command's bits 28, 27 and 26, so that each
-    /// word's position is a constant.
-    #[inline(always)]
-    fn decode_polygon<const GOURAUD: bool, const QUAD: bool, const UV: bool>(
-        &mut self,
-        p: &[u32; MAX_PACKET],
-    ) -> (Triangle, Option<Vertex>) {
-        let cmd = p[0];
-        let (gouraud, quad, has_uv) = (GOURAUD, QUAD, UV);
-        let semi = cmd & (1 << 25) != 0;
-        let raw = cmd & (1 << 24) != 0;
-        // Vertex n > 0 starts with its colour word when Gouraud; position, then UV word.
-        let per_vertex = 1 + usize::from(has_uv) + usize::from(gouraud);
-        let at = |n: usize| -> (u32, u32, u32) {
-            let start = if n == 0 {
-                0
-            } else {
-                1 + usize::from(has_uv) + (n - 1) * per_vertex
-            };
-            let word = |i: usize| p.get(i).copied().unwrap_or(0);
-            let rgb = if n > 0 && gouraud {
-                word(start + 1)
-            } else {
-                cmd
-            };
-            let pos = start + 1 + usize::from(n > 0 && gouraud);
-            (rgb, word(pos), if has_uv { word(pos + 1) } else { 0 })
-        };
-        let draw = &self.draw;
-        let vertex = |(rgb, pos, uv): (u32, u32, u32)| {
-            let mut v = Gpu::vertex(draw, pos, rgb);
-            v.u = uv as u8;
-            v.v = (uv >> 8) as u8;
-            v
-        };
-        let (w0, w1, w2) = (at(0), at(1), at(2));
-        let verts = [vertex(w0), vertex(w1), vertex(w2)];
-        let fourth = quad.then(|| vertex(at(3)));
-        if has_uv {
-            self.draw.mode.set_texpage(w1.2 >> 16);
-            if !self.texture_disable_allowed {
-                self.draw.mode.texture_disable = false;
-            }
-        }
-        let mode = &self.draw.mode;
-        let textured = has_uv && textures_enabled(mode, self.texture_disable_allowed);
-        let first = Triangle {
-            vertices: verts,
-            gouraud,
-            texture: textured.then(|| texture(mode, w0.2 >> 16, raw)),
-            blend: semi.then_some(mode.blend),
-            dither: mode.dither && dither_applies(gouraud, textured, raw),
-        };
-        (first, fourth)
-    }
-
-    /// [`Gpu::decode_polygon`] for any polygon command: the packet's shape from its bits
-    /// 26-28.
-    #[cfg(test)]
-    fn decode_any_polygon(&mut self, p: &[u32; MAX_PACKET]) -> (Triangle, Option<Vertex>) {
-        by_polygon_shape!(p[0], self.decode_polygon(p))
-    }
-
     /// Execute a polygon packet; returns its cost in draw units. The packet's shape
-    /// (Gouraud, quad, textured: bits 28, 27, 26) chooses one copy of the routine.
-    fn polygon(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        by_polygon_shape!(p[0], self.polygon_as(p))
+    /// (Gouraud, quad, textured: bits 28, 27, 26) chooses one copy of [`Gpu::polygon_as`].
+    fn polygon(&mut self, op: PolygonOp, p: &[u32; MAX_PACKET]) -> u32 {
+        by_polygon_shape!(op, self.polygon_as(op, p))
     }
 
     /// [`Gpu::polygon`] for a packet of the shape the const parameters give.
     fn polygon_as<const GOURAUD: bool, const QUAD: bool, const UV: bool>(
         &mut self,
+        op: PolygonOp,
         p: &[u32; MAX_PACKET],
     ) -> u32 {
-        let cmd = p[0];
+        let semi = op.semi_transparent;
+        let (tri, fourth) = decode_polygon::<GOURAUD, QUAD, UV>(
+            op,
+            p,
+            &mut self.draw,
+            self.texture_disable_allowed,
+        );
         let gouraud = GOURAUD;
-        let semi = cmd & (1 << 25) != 0;
-        let (tri, fourth) = self.decode_polygon::<GOURAUD, QUAD, UV>(p);
         let textured = tri.texture.is_some();
         let clut_units = tri
             .texture
@@ -757,12 +644,14 @@ impl Gpu {
     /// draw mode is unchanged (no texpage attribute), no CLUT is loaded, nothing is read back
     /// (docs/hardware/gpu.md §2, §3).
     fn flat_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        let [a, b, c] = [p[1], p[2], p[3]].map(|w| {
-            let v = Gpu::vertex(&self.draw, w, 0);
+        const F3: PolygonOp = PolygonOp::from_op(0x20);
+        let at = |n: usize| {
+            let v = Gpu::vertex(&self.draw, p[F3.position_word(n)], 0);
             (v.x, v.y)
-        });
+        };
+        let [a, b, c] = [at(0), at(1), at(2)];
         let rows = self.draw_rows();
-        let rgb = color::unpack888(p[0]);
+        let rgb = color::unpack888(p[F3.color_word(0)]);
         let drawn = draw_flat_triangle_rows(&mut self.vram, &self.draw, [a, b, c], rgb, rows);
         Cost::triangle(false, false, false, false, drawn)
     }
@@ -772,12 +661,10 @@ impl Gpu {
     /// it. Dithered under E1h bit 9; the draw mode is unchanged (no texpage attribute), no
     /// CLUT is loaded, nothing is read back (docs/hardware/gpu.md §2, §3, §6).
     fn gouraud_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        const G3: PolygonOp = PolygonOp::from_op(0x30);
+        let vertex = |n| Gpu::vertex(&self.draw, p[G3.position_word(n)], p[G3.color_word(n)]);
         let tri = Triangle {
-            vertices: [
-                Gpu::vertex(&self.draw, p[1], p[0]),
-                Gpu::vertex(&self.draw, p[3], p[2]),
-                Gpu::vertex(&self.draw, p[5], p[4]),
-            ],
+            vertices: [vertex(0), vertex(1), vertex(2)],
             gouraud: true,
             texture: None,
             blend: None,
@@ -788,28 +675,28 @@ impl Gpu {
         Cost::triangle(false, true, false, false, drawn)
     }
 
-    fn line(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+    fn line(&mut self, op: LineOp, p: &[u32; MAX_PACKET]) -> u32 {
         // One flat opaque segment (no Gouraud, semi-transparency or polyline bit),
         // undithered, without mask check, on every row: two positions and a colour, without
         // the decoded line, when it lies inside the drawing area (docs/hardware/gpu.md §2, §4).
-        if p[0] & (1 << 28 | 1 << 27 | 1 << 25) == 0
-            && !self.draw.mode.dither
-            && !self.draw.mask.check
-            && self.draw_rows() == Rows::All
+        let plain = !(op.gouraud || op.polyline || op.semi_transparent);
+        if plain && !self.draw.mode.dither && !self.draw.mask.check && self.draw_rows() == Rows::All
         {
-            let v = [p[1], p[2]].map(|w| {
-                let v = Gpu::vertex(&self.draw, w, 0);
+            const F2: LineOp = LineOp::from_op(0x40);
+            let at = |n: usize| {
+                let v = Gpu::vertex(&self.draw, p[F2.position_word(n)], 0);
                 (v.x, v.y)
-            });
-            let rgb = color::unpack888(p[0]);
+            };
+            let v = [at(0), at(1)];
+            let rgb = color::unpack888(p[F2.color_word(0)]);
             if let Some(drawn) = draw_flat_line(&mut self.vram, &self.draw, v, rgb) {
                 return Cost::line(drawn);
             }
         }
-        let line = line_packet(p, &self.draw);
+        let line = line_packet(op, p, &self.draw);
         let rows = self.draw_rows();
         let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);
-        if p[0] & (1 << 27) != 0 {
+        if op.polyline {
             self.gp0.mode = Mode::Polyline(Polyline::new(line));
         }
         Cost::line(drawn)
@@ -836,15 +723,17 @@ impl Gpu {
         }
     }
 
-    fn rectangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
-        let semi = p[0] & (1 << 25) != 0;
-        let rect = rectangle_packet(p, &self.draw, self.texture_disable_allowed);
+    fn rectangle(&mut self, op: RectangleOp, p: &[u32; MAX_PACKET]) -> u32 {
+        let rect = rectangle_packet(op, p, &self.draw, self.texture_disable_allowed);
         let clut_units = rect
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let rows = self.draw_rows();
         let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
-        clut_units.saturating_add(Cost::rectangle(semi || self.draw.mask.check, drawn))
+        clut_units.saturating_add(Cost::rectangle(
+            op.semi_transparent || self.draw.mask.check,
+            drawn,
+        ))
     }
 }
 
@@ -853,12 +742,65 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
+    /// The polygon word order of docs/hardware/gpu.md §2 read word by word: for each vertex in
+    /// turn its colour word (Gouraud, not the first vertex), its position word and its
+    /// texture word (textured); vertex 0's texture word carries the CLUT attribute, vertex
+    /// 1's the texpage attribute, which rewrites the draw mode's bits 0-8 and 11.
+    fn fact_sheet_polygon(p: &[u32; MAX_PACKET], draw: &DrawState, allowed: bool) -> PolygonPacket {
+        let cmd = p[0];
+        let gouraud = cmd & (1 << 28) != 0;
+        let quad = cmd & (1 << 27) != 0;
+        let has_uv = cmd & (1 << 26) != 0;
+        let semi = cmd & (1 << 25) != 0;
+        let raw = cmd & (1 << 24) != 0;
+        let mut mode = draw.mode;
+        let mut verts = [Vertex::default(); 4];
+        let mut clut_attr = 0;
+        let mut words = p[1..].iter().copied();
+        for (n, v) in verts.iter_mut().take(if quad { 4 } else { 3 }).enumerate() {
+            let rgb = if n > 0 && gouraud {
+                words.next().unwrap_or(0)
+            } else {
+                cmd
+            };
+            *v = Gpu::vertex(draw, words.next().unwrap_or(0), rgb);
+            if has_uv {
+                let uv = words.next().unwrap_or(0);
+                (v.u, v.v) = (uv as u8, (uv >> 8) as u8);
+                match n {
+                    0 => clut_attr = uv >> 16,
+                    1 => mode.set_texpage(uv >> 16),
+                    _ => {}
+                }
+            }
+        }
+        if has_uv && !allowed {
+            mode.texture_disable = false;
+        }
+        let textured = has_uv && textures_enabled(&mode, allowed);
+        let first = Triangle {
+            vertices: [verts[0], verts[1], verts[2]],
+            gouraud,
+            texture: textured.then(|| texture(&mode, clut_attr, raw)),
+            blend: semi.then_some(mode.blend),
+            dither: mode.dither && dither_applies(gouraud, textured, raw),
+        };
+        let second = quad.then(|| Triangle {
+            vertices: [verts[1], verts[2], verts[3]],
+            ..first
+        });
+        PolygonPacket {
+            first,
+            second,
+            mode,
+        }
+    }
+
     proptest! {
-        /// A polygon packet decoded in place (the draw mode rewritten by its texpage
-        /// attribute) gives the triangles and draw mode [`polygon_packet`] gives, for every
-        /// polygon command, random words and any draw mode, offset and GP1(09h) setting.
+        /// Every polygon command decodes as the fact sheet's word order reads, for random
+        /// words and any draw mode, offset and GP1(09h) setting.
         #[test]
-        fn in_place_decode_matches_polygon_packet(
+        fn polygon_decode_follows_the_word_order(
             op in 0x20u32..0x40,
             words in proptest::array::uniform12(any::<u32>()),
             e1 in any::<u32>(),
@@ -871,46 +813,9 @@ mod tests {
             apply_environment(&mut g.draw, 0xE500_0000 | (offset & 0xFF_FFFF), allowed);
             let mut p = words;
             p[0] = op << 24 | (p[0] & 0xFF_FFFF);
-            let expected = polygon_packet(&p, &g.draw, allowed);
-            let (first, fourth) = g.decode_any_polygon(&p);
-            prop_assert_eq!(first, expected.first);
-            prop_assert_eq!(fourth.map(|d| second_triangle(&first, d)), expected.second);
-            prop_assert_eq!(g.draw.mode, expected.mode);
-        }
-    }
-
-    /// Packet lengths from the word layouts of docs/hardware/gpu.md §2: polygons F3=4, F4=5,
-    /// G3=6, G4=8, FT3=7, FT4=9, GT3=9, GT4=12 whatever their semi-transparency and raw bits;
-    /// lines F2=3, G2=4 (a polyline's first segment the same); rectangles the command and
-    /// position words, plus the texture word when textured, plus the size word when variable;
-    /// fill 3, VRAM copy 4, CPU transfers 3; every other command one word.
-    #[test]
-    fn packet_lengths_match_the_fact_sheet() {
-        for low in 0..4u32 {
-            for (op, len) in POLYGON_WORDS {
-                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
-            }
-            for (op, len) in [(0x40, 3), (0x48, 3), (0x50, 4), (0x58, 4)] {
-                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
-            }
-            let rectangles = [(0x60, 3), (0x64, 4), (0x68, 2), (0x6C, 3), (0x70, 2)];
-            for (op, len) in rectangles
-                .into_iter()
-                .chain([(0x74, 3), (0x78, 2), (0x7C, 3)])
-            {
-                assert_eq!(packet_len((op | low) << 24), len, "{:02X}h", op | low);
-            }
-        }
-        for op in 0..=0xFFu32 {
-            let expected = match op {
-                0x02 => 3,
-                0x20..=0x7F => continue,
-                0x80..=0x9F => 4,
-                0xA0..=0xDF => 3,
-                _ => 1,
-            };
-            // The low 24 bits are parameters and never change the length.
-            assert_eq!(packet_len(op << 24 | 0xFF_FFFF), expected, "{op:02X}h");
+            let expected = fact_sheet_polygon(&p, &g.draw, allowed);
+            let decoded = polygon_packet(PolygonOp::from_op(op as u8), &p, &g.draw, allowed);
+            prop_assert_eq!(decoded, expected);
         }
     }
 
@@ -925,7 +830,7 @@ mod tests {
             for (k, (x, y)) in v.into_iter().enumerate() {
                 p[k + 1] = x | y << 16;
             }
-            g.polygon(&p)
+            g.polygon(PolygonOp::from_op(0x28), &p)
         };
         let mut g = Gpu::new();
         g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);

@@ -29,6 +29,7 @@
 extern crate alloc;
 
 mod color;
+pub mod command;
 pub mod command_stream;
 pub mod decode;
 mod display;

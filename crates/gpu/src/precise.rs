@@ -10,7 +10,8 @@
 //! a rendering tool beside the chip, not part of it.
 
 use crate::Gpu;
-use crate::gp0::{MAX_PACKET, packet_len, polygon_packet};
+use crate::command::{Command, Kind, MAX_PACKET};
+use crate::gp0::polygon_packet;
 use crate::rasterizer::draw_triangle_precise;
 pub use crate::rasterizer::precise::{PreciseVertex, SUBPIXEL_BITS};
 
@@ -83,17 +84,17 @@ impl Gpu {
         perspective: bool,
     ) -> Result<(), PreciseError> {
         let cmd = packet.first().copied().unwrap_or(0);
-        if !(0x20..=0x3F).contains(&(cmd >> 24)) {
+        let Kind::Polygon(op) = Command::of(cmd).kind else {
             return Err(PreciseError::NotPolygon(cmd));
-        }
-        let expected = packet_len(cmd);
+        };
+        let expected = op.words();
         if packet.len() != expected {
             return Err(PreciseError::PacketLength {
                 expected,
                 got: packet.len(),
             });
         }
-        let vertices = if cmd & (1 << 27) != 0 { 4 } else { 3 };
+        let vertices = op.vertices();
         if at.len() != vertices {
             return Err(PreciseError::VertexCount {
                 expected: vertices,
@@ -104,7 +105,7 @@ impl Gpu {
         for (w, p) in words.iter_mut().zip(packet) {
             *w = *p;
         }
-        let decoded = polygon_packet(&words, &self.draw, self.texture_disable_allowed);
+        let decoded = polygon_packet(op, &words, &self.draw, self.texture_disable_allowed);
         self.draw.mode = decoded.mode;
         let (ox, oy) = (
             i32::from(self.draw.offset_x) << SUBPIXEL_BITS,

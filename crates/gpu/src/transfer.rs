@@ -70,15 +70,38 @@ fn write_masked(vram: &mut Vram, x: usize, y: usize, value: u16, mask: MaskSetti
     vram.set_pixel(x, y, value | set);
 }
 
-/// GP0(02h) fill (docs/hardware/gpu.md §8): x & 3F0h, y & 1FFh, w rounded up to 16, h & 1FFh; colour
-/// channels >> 3 with bit 15 clear; wraps; ignores drawing area, offset and E6. Lines
-/// `rows` drops are skipped (480i, docs/hardware/gpu.md §8). Returns the filled width and
-/// height.
-pub fn fill(vram: &mut Vram, color: u32, pos: u32, size: u32, rows: Rows) -> (u32, u32) {
-    let x = (pos & 0x3F0) as usize;
-    let y = ((pos >> 16) & 0x1FF) as usize;
-    let w = (((size & 0x3FF) + 0xF) & !0xF) as usize;
-    let h = ((size >> 16) & 0x1FF) as usize;
+/// The rectangle of a GP0(02h) fill (docs/hardware/gpu.md §8): x & 3F0h, y & 1FFh, the
+/// width & 3FFh rounded up to a multiple of 16, the height & 1FFh.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FillRect {
+    /// Left edge, a multiple of 16.
+    pub x: u16,
+    /// Top line.
+    pub y: u16,
+    /// Width, a multiple of 16 up to 1024.
+    pub w: u16,
+    /// Height, up to 511.
+    pub h: u16,
+}
+
+impl FillRect {
+    /// Decode a fill's position and size words.
+    pub fn decode(pos: u32, size: u32) -> Self {
+        Self {
+            x: (pos & 0x3F0) as u16,
+            y: ((pos >> 16) & 0x1FF) as u16,
+            w: (((size & 0x3FF) + 0xF) & !0xF) as u16,
+            h: ((size >> 16) & 0x1FF) as u16,
+        }
+    }
+}
+
+/// GP0(02h) fill of `rect` (docs/hardware/gpu.md §8): colour channels >> 3 with bit 15
+/// clear; wraps; ignores drawing area, offset and E6. Lines `rows` drops are skipped (480i,
+/// docs/hardware/gpu.md §8). Returns the filled width and height.
+pub fn fill(vram: &mut Vram, color: u32, rect: FillRect, rows: Rows) -> (u32, u32) {
+    let (x, y) = (usize::from(rect.x), usize::from(rect.y));
+    let (w, h) = (usize::from(rect.w), usize::from(rect.h));
     let c = ((color & 0xFF) >> 3)
         | (((color >> 8) & 0xFF) >> 3) << 5
         | (((color >> 16) & 0xFF) >> 3) << 10;

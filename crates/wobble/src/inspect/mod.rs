@@ -9,8 +9,8 @@
 use base64_lite::encode as base64;
 use gpu::TextureDepth;
 use gpu::command_stream::{Port, StreamCommand};
+use gpu::decode::{Class, Decoded, Kind, Primitive, TracedCommand, Tracer};
 use gpu::decode::{Coverage, PixelBounds};
-use gpu::decode::{Decoded, Kind, Primitive, TracedCommand, Tracer};
 use gpu::{Gpu, VRAM_HEIGHT, VRAM_LEN, VRAM_WIDTH};
 use image::{Rgb, RgbImage};
 use serde_json::{Value, json};
@@ -281,22 +281,33 @@ fn words_text(words: &[u32]) -> String {
     s
 }
 
-/// One-letter class codes for the page's filter: d draw, t transfer, e environment,
-/// g GP1 display, o other.
+/// One-letter class codes for the page's filter: d draw (D with a dropped primitive),
+/// t transfer, e environment, g GP1 display, o other.
 fn class_code(d: &Decoded) -> char {
     match d.kind.class() {
-        "draw"
+        Class::Draw
             if d.primitives
                 .iter()
                 .any(|p| p.coverage().dropped().is_some()) =>
         {
             'D'
         }
-        "draw" => 'd',
-        "transfer" => 't',
-        "environment" => 'e',
-        "display" => 'g',
-        _ => 'o',
+        Class::Draw => 'd',
+        Class::Transfer => 't',
+        Class::Environment => 'e',
+        Class::Display => 'g',
+        Class::Other => 'o',
+    }
+}
+
+/// The class's name in a row's data.
+fn class_name(class: Class) -> &'static str {
+    match class {
+        Class::Draw => "draw",
+        Class::Transfer => "transfer",
+        Class::Environment => "environment",
+        Class::Display => "display",
+        Class::Other => "other",
     }
 }
 
@@ -349,7 +360,7 @@ pub fn write_report(
             chunk_lines.push(cmd.line);
         }
         classes.push(class_code(&cmd.decoded));
-        if cmd.decoded.kind.class() == "draw" {
+        if cmd.decoded.kind.class() == Class::Draw {
             draw_indices += 1;
         }
         rows.push(row);
@@ -550,7 +561,7 @@ fn run_one(
         "line": cmd.line,
         "last": cmd.last_line,
         "port": match cmd.port { Port::Gp0 => "GP0", Port::Gp1 => "GP1" },
-        "kind": d.kind.class(),
+        "kind": class_name(d.kind.class()),
         "name": d.name,
         "fields": fields,
         "words": words_text(&cmd.words),
