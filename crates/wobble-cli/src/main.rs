@@ -1,26 +1,35 @@
-//! `wobble`: render scenes the PS1 way, replay GTE vectors and GPU command streams, dump VRAM.
+//! `wobble`: render scenes the PS1 way, replay GTE vectors and GPU command streams, inspect a
+//! stream draw by draw, dump VRAM, and measure the accuracy trade.
 
 #![forbid(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand, ValueEnum};
 use gpu::{DisplayArea, Gpu, command_stream};
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand};
 
 mod compare;
+mod counts;
 mod gif;
+mod input;
 mod inspect;
 mod output;
 mod render;
+
+use output::FormatArg;
 
 #[derive(Parser)]
 #[command(
     name = "wobble",
     version,
-    about = "PS1 GTE + GPU emulation: render, replay, dump"
+    about = "PS1 GTE + GPU emulation: render scenes, replay GTE vectors and GPU command \
+             streams, inspect a stream draw by draw, dump VRAM, measure the accuracy trade",
+    after_help = "Outputs: `-o -` writes to standard output (with --format for images); a \
+                  FIFO or device is written through, a regular file is replaced only when \
+                  complete (docs/formats.md, \"Output files\")."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -32,20 +41,20 @@ enum Command {
     /// Render a scene (the built-in default scene without an argument) through GTE ->
     /// ordering table -> GPU.
     Render(render::RenderArgs),
-    /// GTE tools.
+    /// GTE tools: replay JSON-lines test vectors.
     Gte {
         #[command(subcommand)]
         command: GteCommand,
     },
-    /// Run a GP0/GP1 command stream on a fresh GPU and write VRAM as PNG and/or raw.
+    /// Run a GP0/GP1 command stream on a fresh GPU and write VRAM as an image and/or raw.
     Replay(ReplayArgs),
     /// Step through a GP0/GP1 command stream draw by draw: writes an HTML report
     /// (docs/inspect.md).
     Inspect(inspect::InspectArgs),
-    /// Convert a raw VRAM file to PNG: whole VRAM, a display area, or a texture page.
+    /// Convert a raw VRAM file to an image: whole VRAM, a display area, or a texture page.
     Dump(DumpArgs),
     /// Measure what each accuracy knob costs in time and in error against an f64 reference
-    /// renderer; writes OUT/trade.md and images under OUT/trade/.
+    /// renderer; writes DIR/trade.md and images under DIR/trade/.
     Trade(TradeArgs),
 }
 
@@ -53,9 +62,10 @@ enum Command {
 struct TradeArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
     scene: Option<PathBuf>,
-    /// Output directory.
-    #[arg(long, default_value = "trade-report")]
-    out: PathBuf,
+    /// Output directory: trade.md and trade/ are written into it (other files in it are left
+    /// alone). `--out` is the old spelling.
+    #[arg(short, long, alias = "out", default_value = "trade-report")]
+    output: PathBuf,
     /// Consecutive frames measured (2..=600).
     #[arg(long, default_value_t = 24)]
     frames: u32,
@@ -92,7 +102,8 @@ enum Region {
 enum ExpandArg {
     /// `c << 3 | c >> 2`: 31 maps to 255.
     Replicate,
-    /// `c << 3`: what console capture tools wrote (31 maps to 248).
+    /// `c << 3`: what console capture tools wrote (31 maps to 248); the fixtures' capture
+    /// PNGs are reproduced with it.
     Shift,
 }
 
@@ -109,16 +120,20 @@ impl From<ExpandArg> for Expand {
 struct ReplayArgs {
     /// Command stream (.gpu text, docs/formats.md).
     stream: PathBuf,
-    /// PNG output (default: the stream's file name with .png, in the current directory).
+    /// Image output, format by extension or --format; `-` is standard output (default: the
+    /// stream's file name with .png, in the current directory).
     #[arg(short, long)]
     output: Option<PathBuf>,
-    /// Also write the raw VRAM (1024*512 little-endian u16).
+    /// Image format of -o (needed for `-o -`).
+    #[arg(long, value_enum)]
+    format: Option<FormatArg>,
+    /// Also write the raw VRAM (1024*512 little-endian u16); `-` is standard output.
     #[arg(long)]
     raw: Option<PathBuf>,
-    /// What to write as PNG.
+    /// What to write as the image.
     #[arg(long, value_enum, default_value_t = Region::Vram)]
     region: Region,
-    /// 5-bit to 8-bit conversion.
+    /// 5-bit to 8-bit conversion (`shift` reproduces the fixtures' console captures).
     #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
     expand: ExpandArg,
 }
@@ -127,15 +142,19 @@ struct ReplayArgs {
 struct DumpArgs {
     /// Raw VRAM file (1024*512 little-endian u16).
     raw: PathBuf,
-    /// PNG output.
-    #[arg(short, long, default_value = "vram.png")]
-    output: PathBuf,
-    /// What to write (ignored with --texpage).
-    #[arg(long, value_enum, default_value_t = Region::Vram)]
-    region: Region,
-    /// Display area for --region display: X,Y,WxH or X,Y,WxH,24 for 24-bit colour
-    /// (default 0,0,320x240).
-    #[arg(long)]
+    /// Image output, format by extension or --format; `-` is standard output (default: the
+    /// raw file's name with .png, in the current directory: x.vram.bin -> x.png).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Image format of -o (needed for `-o -`).
+    #[arg(long, value_enum)]
+    format: Option<FormatArg>,
+    /// What to write (default vram; display when --display is given).
+    #[arg(long, value_enum, conflicts_with = "texpage")]
+    region: Option<Region>,
+    /// Display area X,Y,WxH or X,Y,WxH,24 for 24-bit colour (default 0,0,320x240 with
+    /// --region display); implies --region display.
+    #[arg(long, conflicts_with = "texpage")]
     display: Option<String>,
     /// View a texture page at VRAM X,Y (X multiple of 64, Y 0 or 256 on hardware).
     #[arg(long)]
@@ -161,10 +180,6 @@ fn parse_depth(text: &str) -> Result<u8> {
         "15" => Ok(15),
         _ => Err(format!("expected 4, 8 or 15, got `{text}`")),
     }
-}
-
-fn read_text(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 fn parse_pair(text: &str, what: &str) -> Result<(usize, usize)> {
@@ -208,8 +223,10 @@ fn parse_display(text: &str) -> Result<DisplayArea> {
 }
 
 fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
-    let text = read_text(file)?;
-    let outcome = wobble::gte_vectors::replay(&text, emit);
+    let what = "a GTE vector file (JSON lines, one vector object a line; docs/formats.md)";
+    let text = input::read_text(file, what)?;
+    let outcome =
+        wobble::gte_vectors::replay(&text, emit).map_err(|e| format!("{}: {e}", file.display()))?;
     for e in &outcome.errors {
         eprintln!("{}: {e}", file.display());
     }
@@ -243,20 +260,24 @@ fn unfinished_text(pending: gpu::PendingInput) -> String {
 }
 
 fn replay(args: &ReplayArgs) -> Result<()> {
-    let output = args.output.clone().unwrap_or_else(|| {
-        let stem = args.stream.file_stem().unwrap_or_default();
-        PathBuf::from(stem).with_extension("png")
-    });
-    output::image_format(&output)?;
-    let png_file = output::OutputFile::create(&output)?;
-    let raw_file = args
-        .raw
-        .as_deref()
-        .map(output::OutputFile::create)
-        .transpose()?;
-    let text = read_text(&args.stream)?;
-    let commands =
-        command_stream::parse(&text).map_err(|e| format!("{}: {e}", args.stream.display()))?;
+    let path = args
+        .output
+        .clone()
+        .unwrap_or_else(|| input::default_output(&args.stream));
+    let format = output::image_format(&path, args.format)?;
+    input::not_the_input(&path, &args.stream)?;
+    if let Some(raw) = &args.raw {
+        if raw == &path && output::is_file_target(raw) {
+            return Err(format!(
+                "{}: given both as the image (-o) and the raw VRAM (--raw)",
+                raw.display()
+            ));
+        }
+        input::not_the_input(raw, &args.stream)?;
+    }
+    let image_out = output::open(&path)?;
+    let raw_out = args.raw.as_deref().map(output::open).transpose()?;
+    let commands = input::read_command_stream(&args.stream)?;
     let mut gpu = Gpu::new();
     let summary = command_stream::run(&mut gpu, &commands);
     if let Some(u) = summary.unfinished {
@@ -273,53 +294,70 @@ fn replay(args: &ReplayArgs) -> Result<()> {
         Region::Vram => vram_image::vram_image(vram, expand),
         Region::Display => vram_image::display_image(vram, gpu.display_area(), expand),
     };
-    if let Some(mut raw) = raw_file {
-        let path = raw.path().to_path_buf();
-        std::io::Write::write_all(raw.writer()?, &vram_image::raw_to_bytes(vram))
-            .map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(mut raw) = raw_out {
+        raw.write_all(&vram_image::raw_to_bytes(vram))
+            .map_err(|e| format!("{}: {e}", raw.name()))?;
+        let name = raw.name().to_string();
         raw.commit()?;
-        eprintln!("wrote {}", path.display());
+        eprintln!("wrote {name}");
     }
-    output::write_image(img, png_file)?;
-    eprintln!("wrote {}", output.display());
+    let name = image_out.name().to_string();
+    output::write_image(img, image_out, format)?;
+    eprintln!("wrote {name}");
     Ok(())
 }
 
 fn dump(args: &DumpArgs) -> Result<()> {
-    output::image_format(&args.output)?;
-    if args.display.is_some() && (args.region != Region::Display || args.texpage.is_some()) {
-        return Err("--display needs --region display (and no --texpage)".into());
-    }
-    if args.display.is_some() {
-        parse_display(args.display.as_deref().unwrap_or_default())?;
-    }
-    let out = output::OutputFile::create(&args.output)?;
-    let bytes = std::fs::read(&args.raw).map_err(|e| format!("{}: {e}", args.raw.display()))?;
-    let vram =
-        vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", args.raw.display()))?;
+    let path = args
+        .output
+        .clone()
+        .unwrap_or_else(|| input::default_output(&args.raw));
+    let format = output::image_format(&path, args.format)?;
+    // --display names a display area: it implies --region display.
+    let region = match (args.region, &args.display) {
+        (Some(Region::Vram), Some(_)) => {
+            return Err("--display names a display area, but --region vram was given".into());
+        }
+        (Some(r), _) => r,
+        (None, Some(_)) => Region::Display,
+        (None, None) => Region::Vram,
+    };
+    let area = match region {
+        Region::Display => Some(parse_display(
+            args.display.as_deref().unwrap_or("0,0,320x240"),
+        )?),
+        Region::Vram => None,
+    };
+    let page = match &args.texpage {
+        Some(page) => {
+            let (px, py) = parse_pair(page, "--texpage")?;
+            let depth = match args.depth.unwrap_or(4) {
+                4 => gpu::TextureDepth::Clut4,
+                8 => gpu::TextureDepth::Clut8,
+                15 => gpu::TextureDepth::Direct15,
+                d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
+            };
+            let clut = parse_pair(args.clut.as_deref().unwrap_or("0,0"), "--clut")?;
+            Some((px, py, depth, clut))
+        }
+        None => None,
+    };
+    input::not_the_input(&path, &args.raw)?;
+    let out = output::open(&path)?;
+    let vram = input::read_raw_vram(&args.raw)?;
     let expand = Expand::from(args.expand);
-    if let Some(page) = &args.texpage {
-        let (px, py) = parse_pair(page, "--texpage")?;
-        let depth = match args.depth.unwrap_or(4) {
-            4 => gpu::TextureDepth::Clut4,
-            8 => gpu::TextureDepth::Clut8,
-            15 => gpu::TextureDepth::Direct15,
-            d => return Err(format!("--depth: expected 4, 8 or 15, got {d}")),
-        };
-        let clut = parse_pair(args.clut.as_deref().unwrap_or("0,0"), "--clut")?;
+    let name = out.name().to_string();
+    if let Some((px, py, depth, clut)) = page {
         let img = vram_image::texture_page_image(&vram, px, py, depth, clut, expand);
-        output::write_image(img, out)?;
+        output::write_image(img, out, format)?;
     } else {
-        let img = match args.region {
-            Region::Vram => vram_image::vram_image(&vram, expand),
-            Region::Display => {
-                let area = parse_display(args.display.as_deref().unwrap_or("0,0,320x240"))?;
-                vram_image::display_image(&vram, area, expand)
-            }
+        let img = match area {
+            None => vram_image::vram_image(&vram, expand),
+            Some(area) => vram_image::display_image(&vram, area, expand),
         };
-        output::write_image(img, out)?;
+        output::write_image(img, out, format)?;
     }
-    eprintln!("wrote {}", args.output.display());
+    eprintln!("wrote {name}");
     Ok(())
 }
 
@@ -342,18 +380,20 @@ fn trade(args: &TradeArgs) -> Result<()> {
         repeats: args.repeats,
         sweep_step: args.sweep_step as usize,
     };
+    let out = output::OutputDir::open(&args.output)?;
     let mut progress = TradeProgressView::new();
-    let rows = wobble::trade::write_report(&scene, &name, settings, &args.out, &mut |step| {
+    let rows = wobble::trade::write_report(&scene, &name, settings, out.path(), &mut |step| {
         progress.show(step)
     })
     .map_err(|e| e.to_string())?;
+    out.commit("trade.md")?;
     for r in &rows {
         println!(
             "{:<50} {:>8.3} ms {:>6.2}x  texel error mean {:.3} max {:.2}  jitter {:.3} px",
             r.name, r.frame_ms, r.ratio, r.texel_mean, r.texel_max, r.jitter
         );
     }
-    println!("wrote {}", args.out.join("trade.md").display());
+    println!("wrote {}", args.output.join("trade.md").display());
     Ok(())
 }
 
@@ -405,9 +445,12 @@ impl TradeProgressView {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Err(e) = output::remove_unfinished_on_interrupt() {
+        eprintln!("warning: {e}");
+    }
     let result = match &cli.command {
         Command::Render(args) => render::run(args).map(|summary| {
-            println!("{summary}");
+            output::say(&summary);
             true
         }),
         Command::Gte {
@@ -416,7 +459,7 @@ fn main() -> ExitCode {
         Command::Replay(args) => replay(args).map(|()| true),
         Command::Dump(args) => dump(args).map(|()| true),
         Command::Inspect(args) => inspect::run(args).map(|summary| {
-            println!("{summary}");
+            output::say(&summary);
             true
         }),
         Command::Trade(args) => trade(args).map(|()| true),

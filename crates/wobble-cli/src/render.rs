@@ -1,16 +1,21 @@
 //! `wobble render`: the scene pipeline driven from the command line.
 
+use crate::counts::count;
 use crate::gif::GifWriter;
+use crate::output::{self, OutputDir};
 use gte::DivideMode;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
 use wobble::reference;
 use wobble::scene::animation::Animation;
 use wobble::scene::default::default_animation;
 use wobble::scene::{Scene, WIDTHS};
+
+/// The last frame's image when -o is not given (and --inspect is not).
+pub const DEFAULT_OUTPUT: &str = "wobble.png";
 
 /// Largest estimated output written without `--large-output`.
 pub const MAX_OUTPUT_BYTES: u64 = 256_000_000;
@@ -29,16 +34,21 @@ pub const COMPARE_FRAMES: u32 = 60;
 pub struct RenderArgs {
     /// Scene file (TOML); the built-in default scene when omitted.
     pub scene: Option<PathBuf>,
-    /// Output PNG of the last frame.
-    #[arg(short, long, default_value = "wobble.png")]
-    pub output: PathBuf,
+    /// Output image of the last frame, format by extension (.png, .bmp, .tga, .ppm) or
+    /// --format; a .gif with --frames above 1 or --compare is the whole animation. `-` is
+    /// standard output. Default wobble.png, or none with --inspect.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Image format of -o (needed for `-o -`; gif writes the animation as above).
+    #[arg(long, value_enum)]
+    pub format: Option<crate::output::FormatArg>,
     /// Number of frames to render (default 1; with --compare, the whole animation: 90 frames
     /// of the default scene, 60 of a scene file).
     #[arg(long)]
     pub frames: Option<u32>,
-    /// Write all frames as an animated GIF at the scene's frame rate (30 a second). With
-    /// --frames above 1 or --compare, and neither --gif nor --png-dir, the GIF goes beside
-    /// the PNG (wobble.gif).
+    /// Write all frames as an animated GIF (a .gif name, `-` or a device) at the scene's
+    /// frame rate (30 a second). With --frames above 1 or --compare, and neither --gif nor
+    /// --png-dir, the GIF goes beside the -o image (wobble.gif) when that is a file.
     #[arg(long, conflicts_with = "png_dir")]
     pub gif: Option<PathBuf>,
     /// Side by side: the hardware pipeline on the left, the f64 reference renderer
@@ -46,7 +56,8 @@ pub struct RenderArgs {
     /// labelled in the image.
     #[arg(long, conflicts_with = "inspect")]
     pub compare: bool,
-    /// Write every frame as a numbered PNG into this directory.
+    /// Write every frame as a numbered PNG into this directory (created, or an existing one
+    /// whose frame files are replaced; the frames are moved into place when all are done).
     #[arg(long)]
     pub png_dir: Option<PathBuf>,
     /// Screen size WxH (widths 256, 320, 368, 512, 640; height up to 256).
@@ -74,7 +85,8 @@ pub struct RenderArgs {
     /// Write outputs estimated above 256 MB (many frames) instead of refusing.
     #[arg(long)]
     pub large_output: bool,
-    /// Write a draw-by-draw report of the last frame into this directory (docs/inspect.md).
+    /// Write a draw-by-draw report of the last frame into this directory (docs/inspect.md);
+    /// no image is written unless -o or --gif asks for one.
     #[arg(long)]
     pub inspect: Option<PathBuf>,
 }
@@ -116,6 +128,31 @@ pub fn parse_size(text: &str) -> Result<(u16, u16), String> {
     Ok((w, h))
 }
 
+/// A duration in milliseconds for the summary, three significant digits (`0.0612`, `12.4`).
+fn milliseconds(d: Duration) -> String {
+    significant(d.as_secs_f64() * 1e3)
+}
+
+/// A duration for the summary: milliseconds below a second, else seconds.
+fn duration(d: Duration) -> String {
+    if d < Duration::from_secs(1) {
+        format!("{} ms", milliseconds(d))
+    } else {
+        format!("{} s", significant(d.as_secs_f64()))
+    }
+}
+
+/// A positive quantity with three significant digits and no exponent (`0.0123`, `4.56`,
+/// `78.9`, `1234`).
+pub fn significant(v: f64) -> String {
+    if !v.is_finite() || v == 0.0 {
+        return format!("{v}");
+    }
+    let digits = v.abs().log10().floor() as i32;
+    let decimals = (2 - digits).clamp(0, 9) as usize;
+    format!("{v:.decimals$}")
+}
+
 /// Run `wobble render`; returns the summary line printed at the end.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
     let (mut scene, animation) = match &args.scene {
@@ -150,24 +187,40 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
     };
-    crate::output::image_format(&args.output)?;
-    let gif_path = match &args.gif {
-        Some(path) => Some(path.clone()),
-        None if (frames > 1 || args.compare) && args.png_dir.is_none() => {
-            Some(args.output.with_extension("gif"))
+    // The last frame's image: -o, else wobble.png unless --inspect writes a report instead.
+    let output = match (&args.output, &args.inspect) {
+        (Some(path), _) => Some(path.clone()),
+        (None, None) => Some(PathBuf::from(DEFAULT_OUTPUT)),
+        (None, Some(_)) => None,
+    };
+    let out_format = match &output {
+        Some(path) => Some(output::image_format(path, args.format)?),
+        None if args.format.is_some() => {
+            return Err("--format names the format of -o, which is not given".into());
         }
         None => None,
     };
-    // `-o anim.gif --frames N`: the output is the animation itself.
-    let last_frame = if gif_path.as_ref() == Some(&args.output) {
-        None
-    } else {
-        Some(crate::output::OutputFile::create(&args.output)?)
-    };
-    if let Some(dir) = &args.png_dir {
-        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        crate::output::check_dir(dir)?;
+    if let Some(path) = &args.gif {
+        output::check_gif_name(path)?;
     }
+    let animated = frames > 1 || args.compare;
+    let gif_path = match &args.gif {
+        Some(path) => Some(path.clone()),
+        None if animated && args.png_dir.is_none() => match (&output, out_format) {
+            // `-o anim.gif --frames N`: the output is the animation itself.
+            (Some(path), Some(image::ImageFormat::Gif)) => Some(path.clone()),
+            (Some(path), _) if output::is_file_target(path) => Some(path.with_extension("gif")),
+            _ => None,
+        },
+        None => None,
+    };
+    let last_frame = match &output {
+        Some(path) if gif_path.as_ref() != Some(path) => Some(output::open(path)?),
+        _ => None,
+    };
+    let mut gif_file = gif_path.as_deref().map(output::open).transpose()?;
+    let png_dir = args.png_dir.as_deref().map(OutputDir::open).transpose()?;
+    let inspect_dir = args.inspect.as_deref().map(OutputDir::open).transpose()?;
     let halves = if args.compare { 2 } else { 1 };
     let (w, h) = (
         u64::from(scene.screen.width) * halves,
@@ -216,15 +269,11 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     } else {
         ProgressBar::hidden()
     };
-    let mut gif_file = gif_path
-        .as_deref()
-        .map(crate::output::OutputFile::create)
-        .transpose()?;
     let mut gif = match &mut gif_file {
         Some(file) => {
             let gw = u16::try_from(w).map_err(|_| format!("GIF width {w} above 65535"))?;
             let gh = u16::try_from(h).map_err(|_| format!("GIF height {h} above 65535"))?;
-            Some(GifWriter::new(file.writer()?, gw, gh, animation.fps)?)
+            Some(GifWriter::new(file, gw, gh, animation.fps)?)
         }
         None => None,
     };
@@ -233,27 +282,32 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         None => e,
     };
     let start = Instant::now();
+    let mut report_time = Duration::ZERO;
     let mut total = FrameStats::default();
     let mut last_image = None;
+    let mut inspect_summary = None;
     for frame in 0..frames {
         animation.pose(&mut renderer, &base, frame)?;
-        let stats = match &args.inspect {
+        let stats = match &inspect_dir {
             Some(dir) if frame + 1 == frames => {
                 let (stats, trace) = renderer.render_frame_traced(frame)?;
                 let title = format!("frame {frame}");
-                wobble::inspect::write_frame_report(
+                let writing = Instant::now();
+                inspect_summary = Some(wobble::inspect::write_frame_report(
                     renderer.scene(),
                     &trace,
-                    dir,
+                    dir.path(),
                     &title,
                     wobble::inspect::InspectOptions::default(),
-                )?;
+                )?);
+                report_time += writing.elapsed();
                 stats
             }
             _ => renderer.render_frame(frame),
         };
         total.accumulate(&stats);
-        let wanted = gif.is_some() || args.png_dir.is_some() || frame + 1 == frames;
+        let wanted =
+            gif.is_some() || png_dir.is_some() || (last_frame.is_some() && frame + 1 == frames);
         if wanted {
             let img = if args.compare {
                 let reference = reference::render(&animation.scene_at(&base, frame), frame);
@@ -261,9 +315,10 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             } else {
                 renderer.image()
             };
-            if let Some(dir) = &args.png_dir {
-                let path = dir.join(format!("frame{frame:05}.png"));
-                crate::output::save_image(img.clone(), &path)?;
+            if let Some(dir) = &png_dir {
+                let path = dir.path().join(format!("frame{frame:05}.png"));
+                img.save_with_format(&path, image::ImageFormat::Png)
+                    .map_err(|e| format!("{}: {e}", path.display()))?;
             }
             if let Some(g) = gif.as_mut() {
                 g.frame(&crate::gif::image_rgb15(&img)).map_err(gif_err)?;
@@ -277,40 +332,63 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             eprintln!("rendered {}/{} frames", frame + 1, frames);
         }
     }
-    let elapsed = start.elapsed();
+    // Writing the --inspect report is not rendering: it is timed apart.
+    let elapsed = start.elapsed().saturating_sub(report_time);
     progress.finish_and_clear();
-    gif.map(GifWriter::finish).transpose().map_err(gif_err)?;
+    let gif_done = gif
+        .map(GifWriter::finish)
+        .transpose()
+        .map_err(gif_err)?
+        .is_some();
     let mut written = Vec::new();
-    if let Some(file) = gif_file {
+    if let (Some(file), Some(img), Some(format)) = (last_frame, last_image, out_format) {
+        let name = file.name().to_string();
+        output::write_image(img, file, format)?;
+        written.push(format!("{name} (last frame)"));
+    }
+    if let (true, Some(file)) = (gif_done, gif_file) {
+        let (name, bytes) = (file.name().to_string(), file.written());
         file.commit()?;
-    }
-    if let (Some(file), Some(img)) = (last_frame, last_image) {
-        crate::output::write_image(img, file)?;
-        written.push(format!("{} (last frame)", args.output.display()));
-    }
-    if let Some(path) = &gif_path {
-        let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
         written.push(format!(
-            "{} ({frames} frames, {:.1} KB, {} fps)",
-            path.display(),
+            "{name} ({}, {:.1} KB, {} fps)",
+            count(frames as usize, "frame", "frames"),
             bytes as f64 / 1000.0,
             animation.fps
         ));
     }
-    if let Some(dir) = &args.png_dir {
+    if let Some(dir) = png_dir {
+        let target = dir.target().to_path_buf();
+        dir.commit("")?;
         written.push(format!(
-            "{} ({frames} frames)",
-            dir.join(format!("frame00000..frame{:05}.png", frames - 1))
+            "{} ({})",
+            target
+                .join(format!("frame00000..frame{:05}.png", frames - 1))
                 .display(),
+            count(frames as usize, "frame", "frames"),
+        ));
+    }
+    let mut report_line = None;
+    if let (Some(dir), Some(report)) = (inspect_dir, &inspect_summary) {
+        let target = dir.target().to_path_buf();
+        dir.commit("index.html")?;
+        report_line = Some(format!(
+            "report of frame {}: {}, written in {} (not counted in the rendering time)",
+            frames - 1,
+            wobble::inspect::summary_line(report, &target),
+            duration(report_time)
         ));
     }
     let seconds = elapsed.as_secs_f64();
     let mut summary = format!(
-        "{frames} frame(s) -> {}: {} polygons drawn, {} culled (NCLIP), {} off screen, {} \
-         dropped ({}); GTE {:.2} ms, OT {:.2} ms, GPU {:.2} ms; total {seconds:.2} s, {:.1} \
-         frames/s rendered{}",
-        written.join(", "),
-        total.drawn,
+        "{} {}: {} drawn, {} culled (NCLIP), {} off screen, {} dropped ({}); GTE {} ms, OT \
+         {} ms, GPU {} ms over {}{}; total {}, {} frames/s rendered{}",
+        count(frames as usize, "frame", "frames"),
+        if written.is_empty() {
+            "rendered".to_string()
+        } else {
+            format!("-> {}", written.join("; "))
+        },
+        count(total.drawn, "polygon", "polygons"),
         total.culled,
         total.offscreen,
         total.dropped,
@@ -319,16 +397,31 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         } else {
             "whole-polygon clip"
         },
-        total.gte.as_secs_f64() * 1e3,
-        total.ot.as_secs_f64() * 1e3,
-        total.gpu.as_secs_f64() * 1e3,
-        f64::from(frames) / seconds.max(1e-9),
+        milliseconds(total.gte),
+        milliseconds(total.ot),
+        milliseconds(total.gpu),
+        if frames == 1 {
+            "the frame"
+        } else {
+            "all frames"
+        },
+        if inspect_summary.is_some() {
+            " (the traced last frame's times include the tracing)"
+        } else {
+            ""
+        },
+        duration(elapsed),
+        significant(f64::from(frames) / seconds.max(1e-9)),
         if args.compare {
             " (with the reference and the output)"
         } else {
             ""
         }
     );
+    if let Some(line) = report_line {
+        summary.push('\n');
+        summary.push_str(&line);
+    }
     if let Some(cap) = wobble::pipeline::cap_message(&total) {
         summary.push('\n');
         summary.push_str(&cap);

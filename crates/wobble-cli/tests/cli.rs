@@ -224,9 +224,38 @@ fn dump_argument_errors() {
         assert!(!o.status.success(), "{extra:?} without --texpage");
         assert!(stderr(&o).contains("--texpage"), "{}", stderr(&o));
     }
-    let o = wobble(&["dump", raw, "-o", png, "--display", "0,0,256x240"]);
+    let o = wobble(&[
+        "dump",
+        raw,
+        "-o",
+        png,
+        "--display",
+        "0,0,256x240",
+        "--region",
+        "vram",
+    ]);
     assert!(!o.status.success());
-    assert!(stderr(&o).contains("--region display"), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--region vram"), "{}", stderr(&o));
+}
+
+/// `--display` implies `--region display`: the image is the display area alone, its first
+/// pixel the hand-made VRAM's green pixel at (1,0).
+#[test]
+fn dump_display_implies_the_region() {
+    let raw = raw_vram();
+    let png = tmp("dump-display.png");
+    let o = wobble(&[
+        "dump",
+        raw.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--display",
+        "1,0,256x240",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let img = image::open(&png).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (256, 240));
+    assert_eq!(img.get_pixel(0, 0).0, [0, 132, 0]);
 }
 
 /// `-o` picks the image format from the extension, or refuses with the list.

@@ -35,7 +35,7 @@ fn render_command_on_example_and_bad_size() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary = String::from_utf8_lossy(&o.stdout);
     assert!(
-        summary.starts_with("3 frame(s)") && summary.contains("polygons drawn"),
+        summary.starts_with("3 frames -> ") && summary.contains("polygons drawn"),
         "{summary}"
     );
     assert_eq!(

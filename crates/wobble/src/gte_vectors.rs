@@ -100,6 +100,37 @@ impl std::error::Error for ReplayError {
     }
 }
 
+/// The text is not a vector file: its first line that holds anything is not a JSON object,
+/// so replay stops there instead of reporting every line.
+#[derive(Debug)]
+pub struct NotVectorFile {
+    /// The 1-based line.
+    pub line: usize,
+    /// What is wrong with it ([`VectorError::NotJson`] or [`VectorError::NotObject`]).
+    pub error: VectorError,
+}
+
+impl fmt::Display for NotVectorFile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "not a GTE vector file: line {} is {}; a vector file holds one JSON object a line \
+             (docs/formats.md, \"GTE vector files\")",
+            self.line,
+            match &self.error {
+                VectorError::NotJson(_) => "not JSON".to_string(),
+                e => e.to_string(),
+            }
+        )
+    }
+}
+
+impl std::error::Error for NotVectorFile {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.error)
+    }
+}
+
 /// Outcome of a replay: counts and the text to print.
 #[derive(Debug, Default)]
 pub struct ReplayOutcome {
@@ -222,17 +253,33 @@ fn run(vector: &Vector) -> [u32; 64] {
 
 /// Replay every vector of a JSON-lines text. Without `emit`, each vector's registers are
 /// compared with `out_data`/`out_ctrl`; with it, the computed registers are emitted as JSON.
-/// A malformed line is reported with its number, counted as failed, and the rest still runs.
-pub fn replay(text: &str, emit: bool) -> ReplayOutcome {
+/// A malformed line is reported with its number, counted as failed, and the rest still runs;
+/// but when the first line that holds anything is not a JSON object, the text is not a vector
+/// file and replay stops with [`NotVectorFile`].
+pub fn replay(text: &str, emit: bool) -> Result<ReplayOutcome, NotVectorFile> {
     let mut outcome = ReplayOutcome::default();
+    let mut seen_object = false;
     for (index, line) in text.lines().enumerate() {
         let number = index + 1;
         if line.trim().is_empty() {
             continue;
         }
-        let vector = serde_json::from_str::<Value>(line)
-            .map_err(VectorError::NotJson)
-            .and_then(|v| parse_vector(&v, number, emit));
+        let value = match serde_json::from_str::<Value>(line) {
+            Ok(v) if v.is_object() => Ok(v),
+            Ok(_) => Err(VectorError::NotObject),
+            Err(e) => Err(VectorError::NotJson(e)),
+        };
+        let value = match value {
+            Err(error) if !seen_object => {
+                return Err(NotVectorFile {
+                    line: number,
+                    error,
+                });
+            }
+            v => v,
+        };
+        seen_object = true;
+        let vector = value.and_then(|v| parse_vector(&v, number, emit));
         let vector = match vector {
             Ok(v) => v,
             Err(e) => {
@@ -277,7 +324,7 @@ pub fn replay(text: &str, emit: bool) -> ReplayOutcome {
             }
         }
     }
-    outcome
+    Ok(outcome)
 }
 
 #[cfg(test)]
@@ -295,7 +342,7 @@ mod tests {
             r#"{{"name":"zero","cmd":null,"in_data":{z},"in_ctrl":{z},"out_data":{z},"out_ctrl":{z}}}"#
         );
         // LZCR (r31) of LZCS = 0 reads 32, so an all-zero expectation fails on LZCR only.
-        let out = replay(&good, false);
+        let out = replay(&good, false).unwrap();
         assert_eq!((out.passed, out.failed), (0, 1));
         assert!(out.output[0].contains("LZCR"));
         assert!(out.output[0].contains("got 00000020 expected 00000000"));
@@ -305,7 +352,7 @@ mod tests {
     fn writes_field_replaces_index_order() {
         // Write LZCS = 1 through the writes list: LZCR reads 31.
         let line = r#"{"name":"w","cmd":null,"writes":[[30,1]]}"#;
-        let out = replay(line, true);
+        let out = replay(line, true).unwrap();
         assert_eq!(out.passed, 1);
         let v: Value = serde_json::from_str(&out.output[0]).unwrap();
         assert_eq!(v["out_data"][31], 31);
@@ -314,11 +361,30 @@ mod tests {
 
     #[test]
     fn bad_lines_are_numbered_and_the_rest_runs() {
-        let text = "not json\n{\"name\":\"x\",\"writes\":[[64,1]]}\n\n{\"writes\":[]}";
-        let out = replay(text, true);
+        let text = "{\"name\":\"x\",\"writes\":[[64,1]]}\nnot json\n\n{\"writes\":[]}";
+        let out = replay(text, true).unwrap();
         assert_eq!(out.failed, 2);
-        assert!(out.errors[0].to_string().starts_with("line 1: not JSON"));
-        assert!(out.errors[1].to_string().starts_with("line 2:"));
+        assert!(out.errors[0].to_string().starts_with("line 1: `writes`[0]"));
+        assert!(out.errors[1].to_string().starts_with("line 2: not JSON"));
         assert_eq!(out.passed, 1);
+    }
+
+    /// A text whose first line with anything on it is not a JSON object is not a vector file:
+    /// one error for that line, whatever follows (a command stream has a hundred such lines).
+    #[test]
+    fn a_file_of_another_format_stops_at_its_first_line() {
+        let stream = "\n# a GPU command stream\ngp0 e1000000\ngp0 e2000000\n";
+        let e = replay(stream, false).unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(matches!(e.error, VectorError::NotJson(_)));
+        let text = e.to_string();
+        assert!(
+            text.starts_with("not a GTE vector file: line 2 is not JSON;")
+                && text.contains("one JSON object a line"),
+            "{text}"
+        );
+        let e = replay("[1, 2]\n{\"writes\":[]}\n", false).unwrap_err();
+        assert_eq!(e.line, 1);
+        assert!(matches!(e.error, VectorError::NotObject));
     }
 }

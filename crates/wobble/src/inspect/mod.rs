@@ -601,12 +601,17 @@ pub fn inspect_stream(
 
 /// The line printed after a report is written.
 pub fn summary_line(s: &InspectSummary, out: &Path) -> String {
+    let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     format!(
-        "{} commands ({} draws, {} primitives dropped, {} pixel changes) -> {}",
-        s.commands,
-        s.draws,
-        s.dropped,
-        s.changed.iter().sum::<u64>(),
+        "{} ({}, {} dropped, {}) -> {}",
+        count(s.commands as u64, "command", "commands"),
+        count(s.draws as u64, "draw", "draws"),
+        count(s.dropped as u64, "primitive", "primitives"),
+        count(
+            s.changed.iter().sum::<u64>(),
+            "pixel change",
+            "pixel changes"
+        ),
         out.join("index.html").display()
     )
 }

@@ -49,12 +49,16 @@ pub const MAX_POLYGONS: usize = 1 << 17;
 pub fn cap_message(stats: &FrameStats) -> Option<String> {
     (stats.capped > 0).then(|| {
         format!(
-            "{} frame(s) reached the per-frame cap of {MAX_POLYGONS} polygons (the primitive \
+            "{} reached the per-frame cap of {MAX_POLYGONS} polygons (the primitive \
              buffer must fit the console's RAM): polygons past it were dropped. To draw them \
              all, lower the mesh's face count or the tessellation level (`--tessellation 0`, \
              or `tessellation` in the scene), or split the model across frames; the cap \
              itself is `MAX_POLYGONS` in crates/wobble/src/pipeline/mod.rs",
-            stats.capped
+            if stats.capped == 1 {
+                "1 frame".to_string()
+            } else {
+                format!("{} frames", stats.capped)
+            }
         )
     })
 }

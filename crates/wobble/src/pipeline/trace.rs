@@ -3,8 +3,9 @@
 //! runs; the normal path only tests an empty `Option`.
 
 use super::gpu_stage::{display_word, frame_environment};
-use super::{FrameStats, Renderer};
+use super::{FrameStats, MAX_POLYGONS, Renderer};
 use gpu::Gpu;
+use std::time::Instant;
 
 /// Why the GTE stage discards a polygon whole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,7 +86,8 @@ impl TraceSink {
 
 impl Renderer {
     /// Render frame `frame` like [`Renderer::render_frame`] and record what happened to
-    /// every polygon and which GP0 packet draws it. Only the hardware path can be traced.
+    /// every polygon and which GP0 packet draws it. The stage times include the tracing.
+    /// Only the hardware path can be traced.
     pub fn render_frame_traced(&mut self, frame: u32) -> Result<(FrameStats, FrameTrace), String> {
         if self.options.precise() {
             return Err(
@@ -94,8 +96,12 @@ impl Renderer {
         }
         self.trace = Some(Box::default());
         let mut stats = FrameStats::default();
+        let t0 = Instant::now();
         self.gte_stage(frame, &mut stats);
+        stats.capped = usize::from(self.scratch.len() >= MAX_POLYGONS);
+        let t1 = Instant::now();
         self.ot_stage(&mut stats);
+        let t2 = Instant::now();
         let sink = self.trace.take().unwrap_or_default();
         let gpu_before = self.gpu.clone();
         let screen = self.scene.screen;
@@ -118,7 +124,11 @@ impl Renderer {
                 .map(|&(_, f)| f);
             packets.push((words.to_vec(), face));
         });
+        let t3 = Instant::now();
         self.gpu_stage(frame);
+        stats.gte = t1 - t0;
+        stats.ot = t2 - t1;
+        stats.gpu = Instant::now() - t3;
         let trace = FrameTrace {
             gpu_before,
             faces: sink.faces,
