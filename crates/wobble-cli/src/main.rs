@@ -25,8 +25,9 @@ use output::FormatArg;
 #[command(
     name = "wobble",
     version,
-    about = "PS1 GTE + GPU emulation: render scenes, replay GTE vectors and GPU command \
-             streams, inspect a stream draw by draw, dump VRAM, measure the accuracy trade",
+    about = "PS1 GTE + GPU emulation: render a scene, gte replay test vectors, replay a GPU \
+             command stream, inspect one draw by draw, dump raw VRAM, trade: measure the \
+             accuracy trade",
     after_help = "Outputs: `-o -` writes to standard output (with --format for images); a \
                   FIFO or device is written through, a regular file is replaced only when \
                   complete (docs/formats.md, \"Output files\")."

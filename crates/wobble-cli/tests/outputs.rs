@@ -465,7 +465,12 @@ fn interrupted_inspect_leaves_the_directory_as_it_was() {
     let stream = d.join("long.gpu");
     // 3000 fills of the whole drawing area, each a different colour: one image each.
     let text: String = (0..3000u32)
-        .map(|i| format!("gp0 02{:06X} 00000000 01FF03FF\n", i.wrapping_mul(2654435) & 0xFFFFFF))
+        .map(|i| {
+            format!(
+                "gp0 02{:06X} 00000000 01FF03FF\n",
+                i.wrapping_mul(2654435) & 0xFFFFFF
+            )
+        })
         .collect();
     std::fs::write(&stream, text).unwrap();
     let report = d.join("report");

@@ -36,6 +36,13 @@ pub struct Mesh {
 /// Why a mesh could not be loaded or placed.
 #[derive(Debug)]
 pub enum MeshError {
+    /// The OBJ file could not be read (missing, unreadable, not text).
+    Io {
+        /// The file, as resolved against the scene file's directory.
+        file: PathBuf,
+        /// The operating system's reason.
+        source: std::io::Error,
+    },
     /// The OBJ reader refused the file; `line` is the offending line when it can be found.
     Obj {
         /// The file.
@@ -98,6 +105,11 @@ pub enum MeshError {
 impl fmt::Display for MeshError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            MeshError::Io { file, source } => write!(
+                f,
+                "mesh file {}: cannot read it: {source}",
+                super::file_shown(file)
+            ),
             MeshError::Obj {
                 file,
                 line: Some(n),
@@ -143,9 +155,10 @@ impl fmt::Display for MeshError {
                     write!(
                         f,
                         "{name}: coordinates up to {} times scale {} exceed the GTE's 16-bit \
-                         range (32767); use scale <= {limit:.6}",
+                         range (32767); use scale <= {}",
                         plain(*extent),
-                        plain(*scale)
+                        plain(*scale),
+                        at_most(limit)
                     )
                 } else {
                     write!(
@@ -159,6 +172,25 @@ impl fmt::Display for MeshError {
                 }
             }
         }
+    }
+}
+
+/// An upper bound for a message, with four significant digits (at least every digit before
+/// the point) rounded down and no trailing zeros, so that the number printed still
+/// satisfies the bound: 32767, 0.3276, 1.234, 0.000001.
+fn at_most(v: f64) -> String {
+    if !v.is_finite() || v <= 0.0 {
+        return plain(v);
+    }
+    let digits = v.log10().floor() as i32 + 1;
+    let decimals = (4 - digits).clamp(0, 12);
+    let scale = 10f64.powi(decimals);
+    let down = (v * scale).floor() / scale;
+    let text = format!("{down:.*}", decimals as usize);
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
     }
 }
 
@@ -179,6 +211,7 @@ impl std::error::Error for MeshError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             MeshError::Obj { source, .. } => Some(source),
+            MeshError::Io { source, .. } => Some(source),
             _ => None,
         }
     }
@@ -319,9 +352,11 @@ impl Mesh {
     /// texture coordinates are 0.
     pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
         let file = || path.to_path_buf();
-        if let Ok(text) = std::fs::read_to_string(path)
-            && let Some((line, keyword)) = locate_non_finite(&text)
-        {
+        let text = std::fs::read_to_string(path).map_err(|source| MeshError::Io {
+            file: file(),
+            source,
+        })?;
+        if let Some((line, keyword)) = locate_non_finite(&text) {
             return Err(MeshError::NotFiniteLine {
                 file: file(),
                 line,
@@ -335,9 +370,7 @@ impl Mesh {
             ignore_lines: true,
         };
         let (models, _materials) = tobj::load_obj(path, &options).map_err(|e| {
-            let line = std::fs::read_to_string(path)
-                .ok()
-                .and_then(|text| locate_obj_error(&text, e));
+            let line = locate_obj_error(&text, e);
             MeshError::Obj {
                 file: file(),
                 line,
@@ -560,5 +593,20 @@ impl Mesh {
             }
         }
         mesh
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::at_most;
+
+    /// Bounds print with four significant digits, rounded down, without trailing zeros.
+    #[test]
+    fn bounds_print_rounded_down() {
+        assert_eq!(at_most(32767.0), "32767");
+        assert_eq!(at_most(32767.0 / 3.0), "10922");
+        assert_eq!(at_most(0.32767), "0.3276");
+        assert_eq!(at_most(1.5), "1.5");
+        assert_eq!(at_most(0.00012345), "0.0001234");
     }
 }

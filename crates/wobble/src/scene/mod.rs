@@ -172,6 +172,16 @@ pub struct MeshAsset {
 }
 
 /// `[accuracy] divide = "unr" | "exact" | "f32"`.
+/// A file named by a scene, for an error message: the path as resolved against the scene
+/// file's directory, followed by its absolute form when that differs (the current directory
+/// made explicit).
+pub(crate) fn file_shown(path: &std::path::Path) -> String {
+    match std::path::absolute(path) {
+        Ok(abs) if abs != path => format!("{} ({})", path.display(), abs.display()),
+        _ => path.display().to_string(),
+    }
+}
+
 fn divide_mode<'de, D: serde::Deserializer<'de>>(d: D) -> Result<gte::DivideMode, D::Error> {
     let name = <String as Deserialize>::deserialize(d)?;
     match name.as_str() {

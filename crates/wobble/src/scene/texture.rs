@@ -167,7 +167,11 @@ pub enum TextureError {
 impl fmt::Display for TextureError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            TextureError::Io { file, source } => write!(f, "{}: {source}", file.display()),
+            TextureError::Io { file, source } => write!(
+                f,
+                "texture file {}: cannot read it: {source}",
+                super::file_shown(file)
+            ),
             TextureError::Decode { file, source } => write!(f, "{}: {source}", file.display()),
             TextureError::TooLarge {
                 file,
