@@ -150,3 +150,70 @@ fn trade_face_on_accuracy_columns() {
         assert!(rows.iter().all(|r| !non_hardware.contains(&r.knob)));
     }
 }
+
+/// The committed report, docs/trade.md, holds what `wobble trade -o docs` measures today: the
+/// deterministic columns of its table (all but the two timing columns, ms/frame and vs
+/// hardware) equal a fresh measurement of the default scene over the same number of frames,
+/// formatted as the report formats them. A change to the default scene or the pipeline that
+/// moves a figure fails here until the report is regenerated.
+#[test]
+fn committed_report_matches_a_measurement() {
+    let doc = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/trade.md"),
+    )
+    .unwrap();
+    let frames: u32 = doc
+        .split("Scene: the default scene, ")
+        .nth(1)
+        .and_then(|t| t.split(" consecutive frames").next())
+        .and_then(|t| t.rsplit(' ').next())
+        .and_then(|n| n.parse().ok())
+        .expect("the report names the default scene and its frame count");
+    let Measurement { rows, skipped, .. } = measure(
+        &Scene::default_scene(),
+        TradeSettings {
+            frames,
+            repeats: 1,
+            sweep_step: 1,
+        },
+    )
+    .unwrap();
+    // A table line without its timing cells: label, polygons, pixels, texel mean and max,
+    // jitter.
+    let deterministic = |line: &str| -> Vec<String> {
+        let cells: Vec<String> = line
+            .trim_matches('|')
+            .split('|')
+            .map(|c| c.trim().to_string())
+            .collect();
+        cells
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != 1 && *i != 2)
+            .map(|(_, c)| c.clone())
+            .collect()
+    };
+    let table = |text: &str| -> Vec<Vec<String>> {
+        text.lines()
+            .skip_while(|l| !l.starts_with("| configuration |"))
+            .skip(2)
+            .take_while(|l| l.starts_with("| "))
+            .map(deterministic)
+            .collect()
+    };
+    let fresh = table(&wobble::trade::figures_table(&rows, &skipped));
+    let committed = table(&doc);
+    assert_eq!(fresh.len(), rows.len());
+    for line in &fresh {
+        let found = committed.iter().find(|c| c[0] == line[0]);
+        assert_eq!(
+            found,
+            Some(line),
+            "docs/trade.md differs from a measurement (regenerate it: cargo run --release -- \
+             trade -o docs)"
+        );
+    }
+    if skipped.is_empty() {
+        assert_eq!(committed.len(), fresh.len(), "rows in docs/trade.md");
+    }
+}

@@ -10,14 +10,14 @@ use std::sync::OnceLock;
 const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// The family name the charts ask plotters for; the bundled font is registered under it.
-const FAMILY: &str = "sans-serif";
+pub(crate) const FAMILY: &str = "sans-serif";
 
 /// Chart size in pixels.
 const SIZE: (u32, u32) = (640, 420);
 
 /// Register the bundled font with plotters once per process; `false` when the font bytes
 /// cannot be parsed.
-fn font_registered() -> bool {
+pub(crate) fn font_registered() -> bool {
     static REGISTERED: OnceLock<bool> = OnceLock::new();
     *REGISTERED.get_or_init(|| register_font(FAMILY, FontStyle::Normal, FONT).is_ok())
 }
@@ -83,21 +83,47 @@ pub fn curve_image(points: &[(u8, f64, f64)]) -> Result<image::RgbImage, String>
         .ok_or_else(|| "chart buffer does not match its size".to_string())
 }
 
-/// Two images next to each other with an 8-pixel white gap; pixels outside either image
-/// are white.
-pub(crate) fn side_by_side(a: &image::RgbImage, b: &image::RgbImage) -> image::RgbImage {
+/// Height of the label strip above [`side_by_side`]'s images.
+pub const LABEL_STRIP: u32 = 24;
+
+/// Two images next to each other with an 8-pixel white gap, each under its label (black text
+/// on a white strip [`LABEL_STRIP`] pixels high); pixels outside either image are white.
+pub(crate) fn side_by_side(
+    a: &image::RgbImage,
+    b: &image::RgbImage,
+    labels: [&str; 2],
+) -> Result<image::RgbImage, String> {
+    if !font_registered() {
+        return Err("the bundled chart font (DejaVuSans.ttf) could not be read".into());
+    }
     let white = image::Rgb([255, 255, 255]);
     let (w, h) = a.dimensions();
-    image::RgbImage::from_fn(w * 2 + 8, h.max(b.height()), |x, y| {
-        let pixel = if x < w {
-            a.get_pixel_checked(x, y)
+    let top = LABEL_STRIP;
+    let size = (w * 2 + 8, h.max(b.height()) + top);
+    let img = image::RgbImage::from_fn(size.0, size.1, |x, y| {
+        let pixel = if y < top {
+            None
+        } else if x < w {
+            a.get_pixel_checked(x, y - top)
         } else if x < w + 8 {
             None
         } else {
-            b.get_pixel_checked(x - w - 8, y)
+            b.get_pixel_checked(x - w - 8, y - top)
         };
         pixel.copied().unwrap_or(white)
-    })
+    });
+    let mut buffer = img.into_raw();
+    {
+        let root = BitMapBackend::with_buffer(&mut buffer, size).into_drawing_area();
+        let style = TextStyle::from((FAMILY, 15).into_font()).color(&BLACK);
+        for (label, x) in labels.iter().zip([4, w as i32 + 12]) {
+            root.draw(&Text::new(label.to_string(), (x, 4), style.clone()))
+                .map_err(|e| e.to_string())?;
+        }
+        root.present().map_err(|e| e.to_string())?;
+    }
+    image::RgbImage::from_raw(size.0, size.1, buffer)
+        .ok_or_else(|| "side-by-side buffer does not match its size".to_string())
 }
 
 #[cfg(test)]
@@ -130,19 +156,31 @@ mod tests {
         assert!(curve_image(&[(0, f64::NAN, f64::INFINITY)]).is_ok());
     }
 
+    /// Both images under the label strip with a white gap between, and each label's text
+    /// (dark pixels) above its own image only.
     #[test]
-    fn side_by_side_puts_a_white_gap_between() {
-        let a = image::RgbImage::from_pixel(3, 2, image::Rgb([1, 2, 3]));
-        let b = image::RgbImage::from_pixel(3, 3, image::Rgb([4, 5, 6]));
-        let s = side_by_side(&a, &b);
-        assert_eq!(s.dimensions(), (14, 3));
-        assert_eq!(s.get_pixel(2, 1).0, [1, 2, 3]);
-        assert_eq!(s.get_pixel(5, 1).0, [255, 255, 255]);
-        assert_eq!(s.get_pixel(11, 2).0, [4, 5, 6]);
+    fn side_by_side_labels_each_half() {
+        let a = image::RgbImage::from_pixel(200, 20, image::Rgb([1, 2, 3]));
+        let b = image::RgbImage::from_pixel(200, 30, image::Rgb([4, 5, 6]));
+        let s = side_by_side(&a, &b, ["left half", "right half"]).unwrap();
+        let top = LABEL_STRIP;
+        assert_eq!(s.dimensions(), (408, 30 + top));
+        assert_eq!(s.get_pixel(2, top + 1).0, [1, 2, 3]);
+        assert_eq!(s.get_pixel(203, top + 1).0, [255, 255, 255]);
+        assert_eq!(s.get_pixel(300, top + 2).0, [4, 5, 6]);
         assert_eq!(
-            s.get_pixel(0, 2).0,
+            s.get_pixel(0, top + 25).0,
             [255, 255, 255],
-            "below the shorter image"
+            "below the shorter"
         );
+        let dark = |x0: u32, x1: u32| {
+            (0..top)
+                .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| s.get_pixel(x, y).0.iter().all(|&c| c < 100))
+                .count()
+        };
+        assert!(dark(0, 100) > 40, "left label");
+        assert!(dark(208, 308) > 40, "right label");
+        assert_eq!(dark(100, 208), 0, "the left label stays over its half");
     }
 }

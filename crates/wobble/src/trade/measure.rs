@@ -1,6 +1,7 @@
 //! The measurements of the trade report: timing, differing pixels, texel error against the
 //! reference renderer, vertex jitter, and the divide sweep.
 
+use super::heat::heat_map;
 use super::{Knob, Row, TradeSettings, configs};
 use crate::pipeline::{
     PipelineOptions, RenderError, Renderer, UnsupportedKnob, object_transform, prepare,
@@ -87,7 +88,7 @@ fn frame_pixels(r: &Renderer) -> Vec<u16> {
 
 /// Distance between two texels of a texture that repeats every `size` texels: the shorter
 /// way round, so a seam between repeats is not an error.
-fn wrapped(d: i32, size: i32) -> f64 {
+pub(crate) fn wrapped(d: i32, size: i32) -> f64 {
     let d = d.rem_euclid(size.max(1));
     d.min(size - d) as f64
 }
@@ -105,30 +106,6 @@ pub fn texel_errors(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> Vec<f
             Some((du * du + dv * dv).sqrt())
         })
         .collect()
-}
-
-/// Per-pixel texel error image (black = exact, bright = large, blue = no comparison).
-pub fn heat_map(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> image::RgbImage {
-    image::RgbImage::from_fn(reference.width as u32, reference.height as u32, |x, y| {
-        let i = y as usize * reference.width + x as usize;
-        match (
-            decode_texel(hw[i], scale),
-            reference.texel[i],
-            reference.texture_size[i],
-        ) {
-            (Some((hu, hv)), Some((ru, rv)), Some((tw, th))) => {
-                let (du, dv) = (wrapped(hu - ru, tw), wrapped(hv - rv, th));
-                let e = (du * du + dv * dv).sqrt();
-                let t = (e / 8.0).min(1.0);
-                image::Rgb([
-                    (255.0 * t) as u8,
-                    (255.0 * (1.0 - (1.0 - t) * (1.0 - t))) as u8 / 2,
-                    0,
-                ])
-            }
-            _ => image::Rgb([0, 0, 40]),
-        }
-    })
 }
 
 /// A vertex's screen position, when it is on screen.

@@ -2,19 +2,22 @@
 //! costs in wrong pixels, texel error and vertex jitter, measured on one scene against the
 //! f64 reference renderer (docs/trade.md).
 //!
-//! [`measure`] takes the figures, [`write_report`] turns them into `trade.md`, and the
-//! charts module draws its images.
+//! [`measure`] takes the figures, [`write_report`] turns them into `trade.md` (every sentence
+//! of its conclusion computed from the figures, [`conclusion`]), the heat module colours the
+//! texel-error maps and draws their colour bar, and the charts module draws the other images.
 
 mod charts;
+mod heat;
 mod measure;
 mod report;
 
 pub use charts::curve_image;
+pub use heat::{HEAT_STOPS, NO_SURFACE, colour_bar, colour_words, heat_colour, heat_map};
 pub use measure::{
-    Measurement, Skipped, coordinate_scene, decode_texel, divide_stability, heat_map, measure,
-    texel_errors, vertex_jitter,
+    Measurement, Skipped, coordinate_scene, decode_texel, divide_stability, measure, texel_errors,
+    vertex_jitter,
 };
-pub use report::write_report;
+pub use report::{conclusion, figures_table, write_report};
 
 use crate::pipeline::{PipelineOptions, RenderError};
 use gte::DivideMode;
