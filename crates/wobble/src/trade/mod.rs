@@ -12,7 +12,9 @@ mod measure;
 mod report;
 
 pub use charts::curve_image;
-pub use heat::{HEAT_STOPS, NO_SURFACE, colour_bar, colour_words, heat_colour, heat_map};
+pub use heat::{
+    BAR_HEIGHT, HEAT_STOPS, NO_SURFACE, colour_bar, colour_words, heat_colour, heat_map,
+};
 pub use measure::{
     Measurement, Skipped, coordinate_scene, decode_texel, divide_stability, measure, texel_errors,
     vertex_jitter,
