@@ -2,7 +2,17 @@
 //! command (docs/hardware/gte.md §3).
 
 /// A set of FLAG bits. Bits 0-11 are always zero; bit 31 is the OR of bits 30-23 and 18-13.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+///
+/// `Debug` and `Display` name the bits set, from bit 31 down:
+///
+/// ```
+/// use gte::Flag;
+/// let flag = Flag::from_bits(0x8100_1000);
+/// assert_eq!(format!("{flag}"), "ERROR | IR1_SATURATED | IR0_SATURATED");
+/// assert_eq!(format!("{flag:?}"), "Flag(0x81001000: ERROR | IR1_SATURATED | IR0_SATURATED)");
+/// assert_eq!(format!("{}", Flag::EMPTY), "EMPTY");
+/// ```
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(
     feature = "serde",
     derive(serde::Serialize, serde::Deserialize),
@@ -68,6 +78,30 @@ impl Flag {
     /// Bit 12: IR0 saturated to 0..1000h.
     pub const IR0_SATURATED: Flag = Flag(1 << 12);
 
+    /// Every bit FLAG can hold with its name, from bit 31 down to bit 12.
+    pub const NAMED: [(Flag, &'static str); 20] = [
+        (Flag::ERROR, "ERROR"),
+        (Flag::MAC1_POSITIVE_OVERFLOW, "MAC1_POSITIVE_OVERFLOW"),
+        (Flag::MAC2_POSITIVE_OVERFLOW, "MAC2_POSITIVE_OVERFLOW"),
+        (Flag::MAC3_POSITIVE_OVERFLOW, "MAC3_POSITIVE_OVERFLOW"),
+        (Flag::MAC1_NEGATIVE_OVERFLOW, "MAC1_NEGATIVE_OVERFLOW"),
+        (Flag::MAC2_NEGATIVE_OVERFLOW, "MAC2_NEGATIVE_OVERFLOW"),
+        (Flag::MAC3_NEGATIVE_OVERFLOW, "MAC3_NEGATIVE_OVERFLOW"),
+        (Flag::IR1_SATURATED, "IR1_SATURATED"),
+        (Flag::IR2_SATURATED, "IR2_SATURATED"),
+        (Flag::IR3_SATURATED, "IR3_SATURATED"),
+        (Flag::COLOR_R_SATURATED, "COLOR_R_SATURATED"),
+        (Flag::COLOR_G_SATURATED, "COLOR_G_SATURATED"),
+        (Flag::COLOR_B_SATURATED, "COLOR_B_SATURATED"),
+        (Flag::SZ3_OTZ_SATURATED, "SZ3_OTZ_SATURATED"),
+        (Flag::DIVIDE_OVERFLOW, "DIVIDE_OVERFLOW"),
+        (Flag::MAC0_POSITIVE_OVERFLOW, "MAC0_POSITIVE_OVERFLOW"),
+        (Flag::MAC0_NEGATIVE_OVERFLOW, "MAC0_NEGATIVE_OVERFLOW"),
+        (Flag::SX2_SATURATED, "SX2_SATURATED"),
+        (Flag::SY2_SATURATED, "SY2_SATURATED"),
+        (Flag::IR0_SATURATED, "IR0_SATURATED"),
+    ];
+
     /// Bits that feed the error summary, bit 31 (docs/hardware/gte.md §3).
     pub const ERROR_SOURCES: u32 = 0x7F87_E000;
     /// Bits a CTC2 write to FLAG keeps (docs/hardware/gte.md §2).
@@ -118,6 +152,35 @@ impl Flag {
     /// Whether no bit is set.
     pub const fn is_empty(self) -> bool {
         self.0 == 0
+    }
+}
+
+impl core::fmt::Display for Flag {
+    /// The names of the bits set ([`Flag::NAMED`]) joined by `" | "`, from bit 31 down, or
+    /// `EMPTY`.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        if self.is_empty() {
+            return f.write_str("EMPTY");
+        }
+        let mut first = true;
+        for (bit, name) in Flag::NAMED {
+            if self.contains(bit) {
+                if !first {
+                    f.write_str(" | ")?;
+                }
+                f.write_str(name)?;
+                first = false;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl core::fmt::Debug for Flag {
+    /// `Flag(0x…: …)`: the register value in hexadecimal and the names of its bits, as
+    /// `Display` gives them.
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(f, "Flag({:#010X}: {})", self.0, self)
     }
 }
 
