@@ -19,6 +19,8 @@ mod command;
 mod commands;
 mod flag;
 mod mac;
+#[cfg(feature = "reference")]
+pub mod reference;
 mod registers;
 mod state;
 #[cfg(feature = "typed")]
