@@ -15,6 +15,10 @@
 #![deny(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
+// proptest, behind the `proptest` feature, needs std.
+#[cfg(feature = "proptest")]
+extern crate std;
+
 mod command;
 mod commands;
 mod flag;
@@ -23,6 +27,8 @@ mod mac;
 pub mod reference;
 mod registers;
 mod state;
+#[cfg(feature = "proptest")]
+pub mod strategy;
 #[cfg(feature = "typed")]
 pub mod typed;
 pub mod unr;
