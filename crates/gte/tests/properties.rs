@@ -1,13 +1,15 @@
-//! Property tests of the register-level engine. Expected values come from the hardware reference's
-//! rules evaluated independently here in i128 (never from the engine's own output).
+//! Property tests of the register-level engine. Expected values come from the reference
+//! model (`gte::reference`, written from docs/hardware/gte.md apart from the engine and held
+//! to the console vectors by tests/reference.rs), from the hardware reference's rules
+//! written out here, or from hand calculation; never from the engine's own output. The
+//! generators aim at the edges: translations near the 44-bit limits, operands scaled to
+//! every magnitude, so that each saturation is hit on both sides.
 
+use gte::reference::{self, Trace};
 use gte::unr::{exact_divide, unr_divide};
 use gte::{Command, MatrixSel, Opcode, TranslationSel, VectorSel};
 use gte::{DivideMode, Flag, Gte};
 use proptest::prelude::*;
-
-const MAC_MAX: i128 = (1 << 43) - 1;
-const MAC_MIN: i128 = -(1 << 43);
 
 fn any_command() -> impl Strategy<Value = u32> {
     prop_oneof![
@@ -27,9 +29,9 @@ fn translation() -> impl Strategy<Value = i32> {
     ]
 }
 
-/// A GTE after RTPS (sf = 1, lm = 0) of V0 = `v` with the identity rotation and the control
-/// registers `control` (number, value) written: IR1-3 = V + TR and the depth VZ + TRZ.
-fn identity_rtps(control: &[(u32, u32)], v: [i16; 3]) -> Gte {
+/// A GTE with the identity rotation, V0 = `v` and the control registers `control` (number,
+/// value) written: RTPS (sf = 1) then gives IR1-3 = V + TR and the depth VZ + TRZ.
+fn identity(control: &[(u32, u32)], v: [i16; 3]) -> Gte {
     let mut gte = Gte::new();
     for (i, w) in [0x1000u32, 0, 0x1000, 0, 0x1000].into_iter().enumerate() {
         gte.write_control(i as u32, w);
@@ -39,8 +41,27 @@ fn identity_rtps(control: &[(u32, u32)], v: [i16; 3]) -> Gte {
     }
     gte.write_data(0, packed(v[0], v[1]));
     gte.write_data(1, v[2] as u16 as u32);
+    gte
+}
+
+/// [`identity`] after RTPS (sf = 1, lm = 0).
+fn identity_rtps(control: &[(u32, u32)], v: [i16; 3]) -> Gte {
+    let mut gte = identity(control, v);
     gte.execute(cmd(Opcode::Rtps, true, false));
     gte
+}
+
+/// Run `word` on `gte` and on the reference model given `gte`'s registers: the two leave
+/// the same registers, FLAG included, and FLAG's bit 31 is the OR of its sources. Returns the
+/// model's trace.
+fn agree(gte: &mut Gte, word: u32) -> Result<Trace, TestCaseError> {
+    let mut model = gte.registers();
+    let trace = reference::execute(&mut model, word);
+    gte.execute(word);
+    prop_assert_eq!(gte.registers(), model, "command {:08X}", word);
+    prop_assert_eq!(gte.flag(), trace.flag());
+    prop_assert!(summary_follows_sources(gte.flag()), "{}", gte.flag());
+    Ok(trace)
 }
 
 /// FLAG bit 31 is the OR of bits 30-23 and 18-13 (docs/hardware/gte.md §3).
@@ -251,8 +272,9 @@ proptest! {
         prop_assert!(q <= 0x1FFFF);
     }
 
-    /// MAC1-3 44-bit flags: MVMVA (RT, V0, TR) with only the first matrix column non-zero,
-    /// so each row's running sum after its first product is the final one: TRn<<12 + RTn1*VX.
+    /// MAC1-3 44-bit flags and wrap: MVMVA (RT, V0, TR) with only the first matrix column
+    /// non-zero and translations near the ends of i32, so each row's running sum after its
+    /// first product, TRn << 12 + RTn1 × VX, lands on either side of ±2^43.
     #[test]
     fn mac_overflow_flags(tr in prop::array::uniform3(translation()), col in prop::array::uniform3(any::<i16>()), vx in any::<i16>(), sf in any::<bool>()) {
         let mut gte = Gte::new();
@@ -265,18 +287,9 @@ proptest! {
         }
         gte.write_data(0, packed(vx, 0));
         let word = Command::build(Opcode::Mvmva, sf, false, MatrixSel::Rotation, VectorSel::V0, TranslationSel::Translation).word();
-        gte.execute(word);
-        let flag = gte.flag();
-        let positive = [Flag::MAC1_POSITIVE_OVERFLOW, Flag::MAC2_POSITIVE_OVERFLOW, Flag::MAC3_POSITIVE_OVERFLOW];
-        let negative = [Flag::MAC1_NEGATIVE_OVERFLOW, Flag::MAC2_NEGATIVE_OVERFLOW, Flag::MAC3_NEGATIVE_OVERFLOW];
-        let shift = if sf { 12 } else { 0 };
-        for n in 0..3 {
-            let sum = ((tr[n] as i128) << 12) + col[n] as i128 * vx as i128;
-            prop_assert_eq!(flag.contains(positive[n]), sum > MAC_MAX, "MAC{}", n + 1);
-            prop_assert_eq!(flag.contains(negative[n]), sum < MAC_MIN, "MAC{}", n + 1);
-            // MACn is the 44-bit wrapped sum shifted, low 32 bits.
-            let wrapped = if sum > MAC_MAX { sum - (1 << 44) } else if sum < MAC_MIN { sum + (1 << 44) } else { sum };
-            prop_assert_eq!(gte.read_data((25 + n) as u32), (wrapped >> shift) as i32 as u32, "MAC{}", n + 1);
+        let Trace::Mvmva(t) = agree(&mut gte, word)? else { unreachable!() };
+        for (n, row) in t.step.rows.iter().enumerate() {
+            prop_assert_eq!(row.exact, ((tr[n] as i64) << 12) + col[n] as i64 * vx as i64);
         }
     }
 
@@ -292,18 +305,8 @@ proptest! {
         gte.write_data(0, packed(v[0], v[1]));
         gte.write_data(1, v[2] as u16 as u32);
         let word = Command::build(Opcode::Mvmva, false, lm, MatrixSel::Rotation, VectorSel::V0, TranslationSel::None).word();
-        gte.execute(word);
-        let flag = gte.flag();
-        let min = if lm { 0 } else { -0x8000 };
-        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED, Flag::IR3_SATURATED];
-        for row in 0..3 {
-            let dot: i128 = (0..3).map(|c| m[row * 3 + c] as i128 * v[c] as i128).sum();
-            prop_assert_eq!(gte.read_data((25 + row) as u32) as i32 as i128, dot);
-            let out = !(min..=0x7FFF).contains(&dot);
-            prop_assert_eq!(flag.contains(bits[row]), out);
-            prop_assert_eq!(gte.read_data((9 + row) as u32) as i32 as i128, dot.clamp(min, 0x7FFF));
-        }
-        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+        let Trace::Mvmva(t) = agree(&mut gte, word)? else { unreachable!() };
+        prop_assert_eq!(t.step.mac().map(i64::from), t.step.exact());
     }
 
     /// RTPS's saturations (docs/hardware/gte.md §5 steps 3-6) at every magnitude: rotation,
@@ -339,49 +342,15 @@ proptest! {
         gte.write_control(25, ofs[1] as u32);
         gte.write_data(0, packed(v[0], v[1]));
         gte.write_data(1, v[2] as u16 as u32);
-        gte.execute(cmd(Opcode::Rtps, sf, lm));
-        let flag = gte.flag();
-        let shift = if sf { 12 } else { 0 };
-        let min = if lm { 0 } else { -0x8000 };
-        let acc: [i128; 3] = core::array::from_fn(|r| {
-            ((tr[r] as i128) << 12) + (0..3).map(|c| m[r * 3 + c] as i128 * v[c] as i128).sum::<i128>()
-        });
-        let mut ir = [0i128; 3];
-        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED];
-        for n in 0..3 {
-            let mac = (acc[n] >> shift) as i32 as i128;
-            prop_assert_eq!(gte.read_data(25 + n as u32) as i32 as i128, mac);
-            ir[n] = mac.clamp(min, 0x7FFF);
-            prop_assert_eq!(gte.read_data(9 + n as u32) as i32 as i128, ir[n]);
-            if n < 2 {
-                prop_assert_eq!(flag.contains(bits[n]), ir[n] != mac);
-            }
-        }
-        // IR3's flag from acc3 SAR 12 against the lm=0 range; SZ3 from the same value.
-        let z = acc[2] >> 12;
-        prop_assert_eq!(flag.contains(Flag::IR3_SATURATED), !(-0x8000..=0x7FFF).contains(&z));
-        let sz3 = z.clamp(0, 0xFFFF);
-        prop_assert_eq!(gte.read_data(19) as i128, sz3);
-        prop_assert_eq!(flag.contains(Flag::SZ3_OTZ_SATURATED), sz3 != z);
-        let q: i128 = if sz3 == 0 { 0x1_FFFF } else { 0 };
-        prop_assert_eq!(flag.contains(Flag::DIVIDE_OVERFLOW), sz3 == 0);
-        let screen = [(q * ir[0] + ofs[0] as i128) >> 16, (q * ir[1] + ofs[1] as i128) >> 16];
-        let sxy = gte.read_data(14);
-        let got = [sxy as i16 as i128, (sxy >> 16) as i16 as i128];
-        let sat = [Flag::SX2_SATURATED, Flag::SY2_SATURATED];
-        for k in 0..2 {
-            let clamped = screen[k].clamp(-0x400, 0x3FF);
-            prop_assert_eq!(got[k], clamped);
-            prop_assert_eq!(flag.contains(sat[k]), clamped != screen[k]);
-        }
-        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+        let Trace::Rtps(t) = agree(&mut gte, cmd(Opcode::Rtps, sf, lm))? else { unreachable!() };
+        // H = 0: the quotient is 0, or 1FFFFh when SZ3 = 0.
+        prop_assert_eq!(t.vertex.quotient, if t.vertex.sz3 == 0 { 0x1FFFF } else { 0 });
     }
 
     /// NCS's two steps (docs/hardware/gte.md §8: IR = LLM * V, then IR = BK + LCM * IR, the
     /// colour from the last MACs) at every magnitude: both matrices, the normal and BK scaled
     /// down by random shifts, so that each step's IR1-3 fall inside their range, on its
-    /// edges and outside, alone or together. BK stays within 2^30, where no sum leaves 44
-    /// bits; LCM * IR then stays far inside them too.
+    /// edges and outside, alone or together.
     #[test]
     fn ncs_saturation_at_every_magnitude(
         llm in prop::array::uniform9(any::<i16>()),
@@ -410,31 +379,8 @@ proptest! {
         gte.write_data(0, packed(v[0], v[1]));
         gte.write_data(1, v[2] as u16 as u32);
         gte.write_data(6, 0x2A00_0000);
-        gte.execute(cmd(Opcode::Ncs, sf, lm));
-        let flag = gte.flag();
-        let shift = if sf { 12 } else { 0 };
-        let min = if lm { 0 } else { -0x8000 };
-        let bits = [Flag::IR1_SATURATED, Flag::IR2_SATURATED, Flag::IR3_SATURATED];
-        let mut raised = [false; 3];
-        let light: [i128; 3] = core::array::from_fn(|r| {
-            let mac = ((0..3).map(|c| llm[r * 3 + c] as i128 * v[c] as i128).sum::<i128>() >> shift) as i32 as i128;
-            let ir = mac.clamp(min, 0x7FFF);
-            raised[r] |= ir != mac;
-            ir
-        });
-        let mut rgb = 0x2A00_0000u32;
-        for r in 0..3 {
-            let sum = ((bk[r] as i128) << 12) + (0..3).map(|c| lcm[r * 3 + c] as i128 * light[c]).sum::<i128>();
-            let mac = (sum >> shift) as i32 as i128;
-            prop_assert_eq!(gte.read_data(25 + r as u32) as i32 as i128, mac);
-            let ir = mac.clamp(min, 0x7FFF);
-            raised[r] |= ir != mac;
-            prop_assert_eq!(gte.read_data(9 + r as u32) as i32 as i128, ir);
-            prop_assert_eq!(flag.contains(bits[r]), raised[r]);
-            rgb |= ((mac >> 4).clamp(0, 0xFF) as u32) << (8 * r);
-        }
-        prop_assert_eq!(gte.read_data(22), rgb);
-        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+        let Trace::Lit(t) = agree(&mut gte, cmd(Opcode::Ncs, sf, lm))? else { unreachable!() };
+        prop_assert_eq!(t.push.code, 0x2A);
     }
 
     /// MAC0 flags and value: NCLIP of arbitrary screen XY values.
@@ -444,14 +390,7 @@ proptest! {
         for i in 0..3 {
             gte.write_data((12 + i) as u32, packed(p[2 * i], p[2 * i + 1]));
         }
-        gte.execute(Opcode::Nclip.bits());
-        let [x0, y0, x1, y1, x2, y2] = p.map(|v| v as i128);
-        let area = x0 * y1 + x1 * y2 + x2 * y0 - x0 * y2 - x1 * y0 - x2 * y1;
-        let flag = gte.flag();
-        prop_assert_eq!(flag.contains(Flag::MAC0_POSITIVE_OVERFLOW), area > i32::MAX as i128);
-        prop_assert_eq!(flag.contains(Flag::MAC0_NEGATIVE_OVERFLOW), area < i32::MIN as i128);
-        prop_assert_eq!(gte.read_data(24), area as u32);
-        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+        agree(&mut gte, Opcode::Nclip.bits())?;
     }
 
     /// SZ3/OTZ saturation: AVSZ3 and AVSZ4 with arbitrary ZSF and SZ values.
@@ -462,16 +401,7 @@ proptest! {
             gte.write_data((16 + i) as u32, *z as u32);
         }
         gte.write_control(if four { 30 } else { 29 }, zsf as u16 as u32);
-        gte.execute(if four { Opcode::Avsz4 } else { Opcode::Avsz3 }.bits());
-        let sum: i128 = if four { sz.iter().map(|&z| z as i128).sum() } else { sz[1..].iter().map(|&z| z as i128).sum() };
-        let s = zsf as i128 * sum;
-        let otz = s >> 12;
-        prop_assert_eq!(gte.flag().contains(Flag::SZ3_OTZ_SATURATED), !(0..=0xFFFF).contains(&otz));
-        prop_assert_eq!(gte.read_data(7) as i128, otz.clamp(0, 0xFFFF));
-        prop_assert_eq!(gte.read_data(24), s as u32);
-        prop_assert_eq!(gte.flag().contains(Flag::MAC0_POSITIVE_OVERFLOW), s > i32::MAX as i128);
-        prop_assert_eq!(gte.flag().contains(Flag::MAC0_NEGATIVE_OVERFLOW), s < i32::MIN as i128);
-        prop_assert!(summary_follows_sources(gte.flag()), "{:08X}", gte.flag().bits());
+        agree(&mut gte, if four { Opcode::Avsz4 } else { Opcode::Avsz3 }.bits())?;
     }
 
     /// Colour FIFO saturation: GPF, Cn = (IRn * IR0 >> shift) >> 4 clamped to 0..FFh.
@@ -482,54 +412,19 @@ proptest! {
         for (i, v) in ir.iter().enumerate() {
             gte.write_data((9 + i) as u32, *v as u16 as u32);
         }
-        gte.execute(cmd(Opcode::Gpf, sf, false));
-        let shift = if sf { 12 } else { 0 };
-        let bits = [Flag::COLOR_R_SATURATED, Flag::COLOR_G_SATURATED, Flag::COLOR_B_SATURATED];
-        let rgb2 = gte.read_data(22);
-        for n in 0..3 {
-            let mac = (ir[n] as i128 * ir0 as i128) >> shift;
-            let c = mac >> 4;
-            prop_assert_eq!(gte.flag().contains(bits[n]), !(0..=0xFF).contains(&c));
-            prop_assert_eq!(((rgb2 >> (8 * n)) & 0xFF) as i128, c.clamp(0, 0xFF));
-        }
-        prop_assert!(summary_follows_sources(gte.flag()), "{:08X}", gte.flag().bits());
+        agree(&mut gte, cmd(Opcode::Gpf, sf, false))?;
     }
 
-    /// SX2/SY2 and IR0 saturation in RTPS: X = q*IR1 + OFX, SX = X >> 16 saturated to
-    /// -400h..3FFh; D = q*DQA + DQB, IR0 = D >> 12 saturated to 0..1000h; q from the UNR divide
-    /// (itself held to hardware vectors and the exhaustive sweep).
+    /// SX2/SY2 and IR0 saturation in RTPS: identity rotation, so IR = V and the depth VZ +
+    /// TRZ; any H, offsets, DQA and DQB.
     #[test]
     fn screen_and_ir0_saturation(
         v in prop::array::uniform3(-4000i16..4000), trz in -5000i32..100_000, h in any::<u16>(),
         ofx in any::<i32>(), ofy in any::<i32>(), dqa in any::<i16>(), dqb in any::<i32>()
     ) {
-        let gte = identity_rtps(
-            &[(7, trz as u32), (24, ofx as u32), (25, ofy as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)],
-            v,
-        );
-        // Identity rotation, sf=1: IR = V (+TR), SZ3 = VZ + TRZ.
-        let z = v[2] as i128 + trz as i128;
-        prop_assert_eq!(gte.read_data(19) as i128, z.clamp(0, 0xFFFF));
-        prop_assert_eq!(gte.flag().contains(Flag::SZ3_OTZ_SATURATED), !(0..=0xFFFF).contains(&z));
-        let (q, _) = unr_divide(h, z.clamp(0, 0xFFFF) as u16);
-        let q = q as i128;
-        let x = q * v[0] as i128 + ofx as i128;
-        let y = q * v[1] as i128 + ofy as i128;
-        let (sx, sy) = (x >> 16, y >> 16);
-        let flag = gte.flag();
-        prop_assert_eq!(flag.contains(Flag::SX2_SATURATED), !(-0x400..=0x3FF).contains(&sx));
-        prop_assert_eq!(flag.contains(Flag::SY2_SATURATED), !(-0x400..=0x3FF).contains(&sy));
-        let sxy = gte.read_data(14);
-        prop_assert_eq!(sxy as u16 as i16 as i128, sx.clamp(-0x400, 0x3FF));
-        prop_assert_eq!((sxy >> 16) as u16 as i16 as i128, sy.clamp(-0x400, 0x3FF));
-        let d = q * dqa as i128 + dqb as i128;
-        prop_assert_eq!(flag.contains(Flag::IR0_SATURATED), !(0..=0x1000).contains(&(d >> 12)));
-        prop_assert_eq!(gte.read_data(8) as i128, (d >> 12).clamp(0, 0x1000));
-        let mac0_out = d > i32::MAX as i128 || d < i32::MIN as i128
-            || x > i32::MAX as i128 || x < i32::MIN as i128
-            || y > i32::MAX as i128 || y < i32::MIN as i128;
-        prop_assert_eq!(flag.intersects(Flag::MAC0_POSITIVE_OVERFLOW.union(Flag::MAC0_NEGATIVE_OVERFLOW)), mac0_out);
-        prop_assert!(summary_follows_sources(flag), "{:08X}", flag.bits());
+        let mut gte = identity(&[(7, trz as u32), (24, ofx as u32), (25, ofy as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)], v);
+        let Trace::Rtps(t) = agree(&mut gte, cmd(Opcode::Rtps, true, false))? else { unreachable!() };
+        prop_assert_eq!(t.vertex.depth, v[2] as i64 + trz as i64);
     }
 
     /// IR0 saturation is not an error source: an RTPS whose screen position, depth and
@@ -540,15 +435,13 @@ proptest! {
         v in prop::array::uniform3(-500i16..500), trz in 1000i32..5000, h in 0u16..1000,
         dqa in -8000i16..8000, dqb in -(1i32 << 29)..(1 << 29)
     ) {
-        let gte = identity_rtps(&[(7, trz as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)], v);
+        let mut gte = identity(&[(7, trz as u32), (26, h as u32), (27, dqa as u16 as u32), (28, dqb as u32)], v);
+        let Trace::Rtps(t) = agree(&mut gte, cmd(Opcode::Rtps, true, false))? else { unreachable!() };
         // SZ3 = VZ + TRZ is at least 500 and H below 1000, so the quotient is below 2.0.
-        let (q, _) = unr_divide(h, (v[2] as i32 + trz) as u16);
-        let d = q as i64 * dqa as i64 + dqb as i64;
-        let saturated = !(0..=0x1000).contains(&(d >> 12));
+        let saturated = !(0..=0x1000).contains(&(t.depth_cue.exact >> 12));
         // CFC2 FLAG.
         prop_assert_eq!(gte.read_control(31), if saturated { Flag::IR0_SATURATED.bits() } else { 0 });
     }
-
     /// Register read/write rules (docs/hardware/gte.md §2).
     #[test]
     fn register_quirks(value in any::<u32>()) {

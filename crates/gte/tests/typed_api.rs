@@ -4,6 +4,7 @@
 
 #![cfg(feature = "typed")]
 
+use gte::reference;
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Translation, Vector3};
 use gte::{DivideMode, Gte};
 use proptest::prelude::*;
@@ -333,41 +334,6 @@ fn on_screen_setup() -> impl Strategy<Value = Setup> {
         })
 }
 
-/// Screen X/Y before truncation, computed from the hardware reference in i128
-/// (docs/hardware/gte.md §5 steps 1-6, sf = 1, lm = 0): the 44-bit accumulator wraps modulo 2^44, IRn saturates MACn to 16 bits,
-/// SZ3 saturates acc3 SAR 12 to 0..FFFFh, and the sum quotient * IRn + OFn is clamped to the
-/// screen range. `quotient` is the divide of H by SZ3.
-fn subpixel_by_hand(s: &Setup, v: Vector3, quotient: impl Fn(u16, u16) -> u32) -> (i128, i128) {
-    let v = [v.x as i128, v.y as i128, v.z as i128];
-    let acc: Vec<i128> = (0..3)
-        .map(|r| {
-            let sum =
-                ((s.tr[r] as i128) << 12) + (0..3).map(|c| s.rt[r][c] as i128 * v[c]).sum::<i128>();
-            // Two's complement modulo 2^44.
-            let m = sum.rem_euclid(1 << 44);
-            if m >= 1 << 43 { m - (1 << 44) } else { m }
-        })
-        .collect();
-    let ir = |a: i128| (((a >> 12) as i32) as i128).clamp(-0x8000, 0x7FFF);
-    let sz3 = (acc[2] >> 12).clamp(0, 0xFFFF) as u16;
-    let q = quotient(s.h, sz3) as i128;
-    let limit = 0x400i128 << 16;
-    (
-        (q * ir(acc[0]) + s.ofx as i128).clamp(-limit, limit - 1),
-        (q * ir(acc[1]) + s.ofy as i128).clamp(-limit, limit - 1),
-    )
-}
-
-/// round(H * 10000h / SZ3) with the overflow rule H >= 2 * SZ3 and the 1FFFFh clamp
-/// (docs/hardware/gte.md §6), in i128.
-fn exact_quotient(h: u16, sz3: u16) -> u32 {
-    let (h, sz3) = (h as i128, sz3 as i128);
-    if h >= 2 * sz3 {
-        return 0x1FFFF;
-    }
-    ((h * 65536 * 2 + sz3) / (2 * sz3)).min(0x1FFFF) as u32
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2000))]
 
@@ -393,14 +359,16 @@ proptest! {
         if !sat_y {
             prop_assert_eq!(sp.y.floor().to_num::<i32>(), p.y as i32);
         }
-        let (x, y) = match mode {
-            DivideMode::Exact => subpixel_by_hand(&s, v, exact_quotient),
-            // The UNR and f32 quotients are checked on their own (console vectors and the
-            // divide properties); here they feed the independent screen computation.
-            _ => subpixel_by_hand(&s, v, |h, sz3| gte::unr::divide(mode, h, sz3).0),
-        };
-        prop_assert_eq!(sp.x.to_bits() as i128, x);
-        prop_assert_eq!(sp.y.to_bits() as i128, y);
+        // The screen values the reference model computes before SXY's truncation, in the
+        // same divide mode, saturated to the range whose integer parts are SXY's.
+        let mut regs = typed(&s).gte().registers();
+        regs.v[0] = [v.x, v.y, v.z];
+        let t = reference::rtps(&mut regs, true, false, mode);
+        let limit = 0x400i64 << 16;
+        let [x, y] = t.vertex.screen.map(|s| s.clamp(-limit, limit - 1));
+        prop_assert_eq!(sp.x.to_bits() as i64, x);
+        prop_assert_eq!(sp.y.to_bits() as i64, y);
+        prop_assert_eq!(sp.projected.quotient, t.vertex.quotient);
     }
 }
 
