@@ -1,6 +1,7 @@
 //! The statements of docs/typed-api.md, each held by a property or an exhaustive check:
 //! the four that the typed docs once had wrong (RTPT's FLAG, NCLIP's wrap, AVSZ3's OTZ, the
-//! colour scale of BK), RTPT against RTPS, the on-screen strategy, and `Flag`'s names.
+//! colour scale of BK), RTPT against RTPS, the rotation's error bound, the on-screen
+//! strategy, and `Flag`'s names.
 
 #![cfg(feature = "typed")]
 
@@ -152,6 +153,31 @@ proptest! {
         prop_assert_eq!(r.quotient, reference::unr(p.h, r.sz).value);
     }
 
+    /// `Matrix::rotation`'s error bound (docs/typed-api.md, "Rotation accuracy"): every
+    /// entry within `ROTATION_ERROR` LSB of the f64 rotation of the same angles, every entry
+    /// of R·Rᵀ within `ROTATION_ORTHOGONALITY` LSB of the identity's.
+    #[test]
+    fn rotation_error_bound(x in strategy::angle(), y in strategy::angle(), z in strategy::angle()) {
+        let m = Matrix::rotation(x, y, z).to_bits();
+        let a = |t: i32| (t & 0xFFF) as f64 / 4096.0 * std::f64::consts::TAU;
+        let (sx, cx, sy, cy, sz, cz) = (a(x).sin(), a(x).cos(), a(y).sin(), a(y).cos(), a(z).sin(), a(z).cos());
+        let exact = [
+            [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
+            [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
+            [-sy, cy * sx, cy * cx],
+        ];
+        for i in 0..3 {
+            for j in 0..3 {
+                let error = (m[i][j] as f64 - 4096.0 * exact[i][j]).abs();
+                prop_assert!(error <= Matrix::ROTATION_ERROR, "entry {},{}: {}", i, j, error);
+                let dot: i64 = (0..3).map(|k| m[i][k] as i64 * m[j][k] as i64).sum();
+                let identity = if i == j { 1i64 << 24 } else { 0 };
+                let off = (dot - identity).abs() as f64 / 4096.0;
+                prop_assert!(off <= Matrix::ROTATION_ORTHOGONALITY, "R·Rᵀ {},{}: {}", i, j, off);
+            }
+        }
+    }
+
     /// `strategy::on_screen` set-ups project every vertex inside 10..=310, 10..=230 with
     /// FLAG clear, through RTPS and RTPT alike.
     #[test]
@@ -220,6 +246,45 @@ fn average_z_against_the_mean() {
     assert_eq!(worst, 16);
     assert_eq!(g.average_z3([0, 3892, 1889]), 1926); // the mean is 1927
     assert_eq!(g.average_z3([0xFFFF; 3]), 0xFFFF - 16);
+}
+
+/// The rotation's bounds are reached: at the triples the exhaustive sweep (example
+/// `rotation_sweep`) found, the entry error is within 0.001 of `ROTATION_ERROR` and R·Rᵀ's
+/// distance is `ROTATION_ORTHOGONALITY` exactly.
+#[test]
+fn rotation_bounds_are_reached() {
+    let turn = |a: i32| a as f64 / 4096.0 * std::f64::consts::TAU;
+    let m = Matrix::rotation(42, 982, 2090).to_bits();
+    let (sx, cx, sy, cy, sz, cz) = (
+        turn(42).sin(),
+        turn(42).cos(),
+        turn(982).sin(),
+        turn(982).cos(),
+        turn(2090).sin(),
+        turn(2090).cos(),
+    );
+    let exact = [
+        [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
+        [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
+        [-sy, cy * sx, cy * cx],
+    ];
+    let worst = (0..9)
+        .map(|k| (m[k / 3][k % 3] as f64 - 4096.0 * exact[k / 3][k % 3]).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        worst <= Matrix::ROTATION_ERROR && worst > Matrix::ROTATION_ERROR - 0.001,
+        "{worst}"
+    );
+    let m = Matrix::rotation(127, 788, 2162).to_bits();
+    let worst = (0..9)
+        .map(|k| {
+            let (i, j) = (k / 3, k % 3);
+            let dot: i64 = (0..3).map(|c| m[i][c] as i64 * m[j][c] as i64).sum();
+            (dot - if i == j { 1 << 24 } else { 0 }).abs()
+        })
+        .max();
+    assert_eq!(worst, Some(37294));
+    assert_eq!(Matrix::ROTATION_ORTHOGONALITY, 37294.0 / 4096.0);
 }
 
 /// `Flag`'s names: one per bit FLAG can hold, in bit order, and Display/Debug built from
