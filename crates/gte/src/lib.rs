@@ -9,7 +9,10 @@
 //! Features: `typed` (default) the typed API and its `fixed` dependency; `divide-modes`
 //! (default) the non-hardware divides [`DivideMode::Exact`] and [`DivideMode::F32`] in the
 //! engine (without it [`Gte::set_divide_mode`] refuses them); `serde` serialization of
-//! [`GteState`]. The crate is `no_std` and allocates nothing.
+//! [`GteState`]; `reference` the reference model `gte::reference`, every command with the
+//! exact values it computes, for property tests; `proptest` the proptest strategies
+//! `gte::strategy`. The crate is `no_std` and allocates nothing, but for `proptest`, which
+//! needs `std` (docs/typed-api.md).
 #![no_std]
 // One volatile load in `registers.rs` (`Words::whole`) is the crate's only unsafe code.
 #![deny(unsafe_code)]
