@@ -4,11 +4,12 @@
 //! texture coordinates) or the f64 reference renderer.
 
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
-use wobble::pipeline::{PipelineOptions, Renderer, object_transform, prepare};
+use wobble::pipeline::{PipelineOptions, Renderer, object_transform};
 use wobble::reference;
 use wobble::scene::Scene;
 use wobble::scene::animation::Animation;
 use wobble::scene::default::{CUBE, FLOOR, SPHERE, WALL, default_animation};
+use wobble::scene::prepared::prepare;
 use wobble::trade::{coordinate_scene, texel_errors};
 
 /// The hardware path with every non-hardware knob off.
@@ -122,6 +123,7 @@ fn cube_jitter(subpixel: bool) -> f64 {
     let animation = default_animation();
     let base = Scene::default_scene();
     let vertices: Vec<Vector3> = prepare(&base, CUBE)
+        .faces
         .iter()
         .flat_map(|f| f.v.map(|v| v.position))
         .collect();

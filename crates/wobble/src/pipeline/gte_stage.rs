@@ -5,10 +5,10 @@
 //! positions, goes through its own RTPT/RTPS, NCLIP and NCCT/NCDT instead.
 
 use super::clip::{Verdict, classify};
-use super::object::{SharedVertex, angle, object_rotation, object_transform, to_fixed};
-use super::tessellate::PreparedFace;
+use super::object::{angle, object_transform};
 use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer, SUBPIXEL_BITS, SubpixelVertex};
+use crate::scene::prepared::{PreparedFace, SharedVertex, to_fixed};
 use gte::Flag;
 use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Vector3};
 
@@ -123,25 +123,6 @@ impl Default for LitNormal {
 
 /// [`LitNormal::lit`] of a normal no face has lit yet this frame.
 const UNLIT: i32 = -1;
-
-/// The distinct normals of an object's shared vertices, and each vertex's index into them:
-/// NCCS/NCDS depend on the vertex through its normal alone (with the material colour, the
-/// light matrices, BK, FC and IR0, the same for the whole object), so vertices with one
-/// normal share one colour.
-pub(super) fn normal_table(vertices: &[SharedVertex]) -> (Vec<Vector3>, Vec<u32>) {
-    let mut index = std::collections::HashMap::new();
-    let mut normals = Vec::new();
-    let of = vertices
-        .iter()
-        .map(|v| {
-            *index.entry(v.normal).or_insert_with(|| {
-                normals.push(v.normal);
-                (normals.len() - 1) as u32
-            })
-        })
-        .collect();
-    (normals, of)
-}
 
 /// One RTPS per shared vertex of an object, as games run RTPS/RTPT over a vertex list into
 /// a scratch buffer. Each vertex gets its SXY, SZ, IR0 and FLAG from its own command: what
@@ -424,7 +405,7 @@ impl Renderer {
         for (object_index, (object, prepared)) in
             scene.objects.iter().zip(&self.objects).enumerate()
         {
-            let r = object_rotation(object, frame);
+            let r = object.rotation_at(frame);
             let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
             let (rt, tr) = object_transform(scene, object, frame);
             g.set_rotation(&rt);
@@ -454,15 +435,15 @@ impl Renderer {
                 (p.clut_attr().bits(), p.texpage(depth, blend).bits())
             });
             if share {
-                project_shared(g, &prepared.vertices, shared);
+                project_shared(g, &prepared.mesh.vertices, shared);
                 lit_normals.clear();
-                lit_normals.resize(prepared.normals.len(), LitNormal::default());
+                lit_normals.resize(prepared.mesh.normals.len(), LitNormal::default());
             }
-            for (face_index, mesh_face) in prepared.faces.iter().enumerate() {
+            for (face_index, mesh_face) in prepared.mesh.faces.iter().enumerate() {
                 // The mesh face itself uses its shared vertices; its pieces, new vertices
                 // made by splitting, go through RTPT/RTPS one piece at a time, depth first
                 // from the split stack.
-                let indices = prepared.indices.get(face_index).filter(|_| share);
+                let indices = prepared.mesh.indices.get(face_index).filter(|_| share);
                 let mut piece;
                 let (mut face, mut level) = (mesh_face, 0u8);
                 loop {
@@ -511,7 +492,7 @@ impl Renderer {
                                 g,
                                 lighting,
                                 lit_normals,
-                                (&prepared.normals, &prepared.normal_of),
+                                (&prepared.mesh.normals, &prepared.mesh.normal_of),
                                 (indices, face.quad),
                                 object.color,
                                 ir0,
@@ -522,7 +503,7 @@ impl Renderer {
                             precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
                         }
                         // A mesh face's texels are rounded once, when the object is prepared.
-                        let uv = match indices.and(prepared.texels.get(face_index)) {
+                        let uv = match indices.and(prepared.mesh.texels.get(face_index)) {
                             Some(&uv) => uv,
                             None => face.v.map(|p| p.texel()),
                         };
@@ -551,8 +532,8 @@ impl Renderer {
 
 #[cfg(test)]
 mod tests {
-    use super::super::tessellate::PreparedVertex;
     use super::*;
+    use crate::scene::prepared::{PreparedVertex, normal_table};
     use gte::typed::Translation;
     use proptest::prelude::*;
 

@@ -18,9 +18,10 @@ pub mod tessellate;
 mod tests;
 mod trace;
 
-pub use object::{angle, object_rotation, object_transform, prepare};
+pub use object::{angle, object_transform};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
+use crate::scene::prepared::prepare;
 use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{Camera, InvalidScene, Scene};
 use gpu::TextureDepth;
@@ -29,8 +30,8 @@ use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
 use gte::DivideMode;
 use gte::typed::Geometry;
-use gte_stage::{LitNormal, ProjectedFace, SharedProjection, normal_table};
-use object::{PreparedObject, prepare_indexed};
+use gte_stage::{LitNormal, ProjectedFace, SharedProjection};
+use object::PreparedObject;
 use std::fmt;
 use std::time::{Duration, Instant};
 use tessellate::{MAX_LEVEL, SplitStack};
@@ -333,7 +334,7 @@ impl Renderer {
                 .tessellation
                 .unwrap_or(o.tessellation)
                 .min(MAX_LEVEL);
-            let mesh = prepare_indexed(&scene, i);
+            let mesh = prepare(&scene, i);
             capacity = mesh
                 .faces
                 .len()
@@ -344,14 +345,8 @@ impl Renderer {
                 let depth = scene.textures.get(t)?.texture.depth;
                 Some((*placements.get(t)?, depth))
             });
-            let (normals, normal_of) = normal_table(&mesh.vertices);
             objects.push(PreparedObject {
-                texels: mesh.faces.iter().map(|f| f.v.map(|v| v.texel())).collect(),
-                faces: mesh.faces,
-                vertices: mesh.vertices,
-                indices: mesh.indices,
-                normals,
-                normal_of,
+                mesh,
                 level,
                 texture,
             });
@@ -373,7 +368,11 @@ impl Renderer {
             height,
             color_24bit: false,
         };
-        let most_vertices = objects.iter().map(|o| o.vertices.len()).max().unwrap_or(0);
+        let most_vertices = objects
+            .iter()
+            .map(|o| o.mesh.vertices.len())
+            .max()
+            .unwrap_or(0);
         let mut geometry = Geometry::new();
         geometry
             .set_divide_mode(options.divide_mode)

@@ -8,42 +8,8 @@
 //! the object's level, a polygon is split while its projected size (object size / depth) is
 //! large or while a vertex lies behind the near plane.
 
+use crate::scene::prepared::{PreparedFace, PreparedVertex};
 use gte::typed::Vector3;
-
-/// Fraction bits of the texture coordinates carried through splits: 8.8 texels.
-pub const UV_FRACTION_BITS: u32 = 8;
-
-/// A polygon vertex ready for the GTE: position in GTE units (V0-V2), 1.3.12 normal and
-/// texture coordinate in 8.8 texels.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PreparedVertex {
-    /// Position, a 16-bit GTE vertex.
-    pub position: Vector3,
-    /// Normal, 1.3.12 (4096 = 1.0).
-    pub normal: Vector3,
-    /// Texture coordinate in 1/256 texels (0..=255 texels).
-    pub uv: [u16; 2],
-}
-
-impl PreparedVertex {
-    /// The texture coordinate rounded to whole texels, as a GP0 UV byte pair.
-    pub fn texel(&self) -> (u8, u8) {
-        let round = |c: u16| {
-            let t = (u32::from(c) + (1 << (UV_FRACTION_BITS - 1))) >> UV_FRACTION_BITS;
-            t.min(255) as u8
-        };
-        (round(self.uv[0]), round(self.uv[1]))
-    }
-}
-
-/// A polygon with its own vertices: quads in GP0 order (v3 opposite v0).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct PreparedFace {
-    /// Vertices; the fourth is unused for triangles.
-    pub v: [PreparedVertex; 4],
-    /// Quad or triangle.
-    pub quad: bool,
-}
 
 /// Midpoint of two 16-bit values (floor of the mean; never overflows).
 fn mid16(a: i16, b: i16) -> i16 {
@@ -231,16 +197,5 @@ mod tests {
             }
         }
         assert_eq!(leaves, 256);
-    }
-
-    #[test]
-    fn texel_rounds_half_up_and_saturates() {
-        let v = |u: u16| PreparedVertex {
-            uv: [u, 0],
-            ..Default::default()
-        };
-        assert_eq!(v(0x0280).texel().0, 3);
-        assert_eq!(v(0x027F).texel().0, 2);
-        assert_eq!(v(0xFFFF).texel().0, 255);
     }
 }

@@ -2,9 +2,9 @@
 //! face, the path split faces take): the same VRAM, counts and traces, frame after frame,
 //! and the default scene's golden image.
 
-use super::object::prepare_indexed;
 use super::{FrameStats, PipelineOptions, Renderer};
 use crate::scene::mesh::{Mesh, MeshFace, MeshVertex};
+use crate::scene::prepared::prepare;
 use crate::scene::{MeshAsset, Scene};
 
 /// The benchmark's sphere: the default scene's objects replaced by one sphere of 2,976
@@ -256,27 +256,40 @@ fn shared_vertices_draw_the_golden_default_scene() {
     );
 }
 
-/// The wall's 3,042 triangles share the 40 x 40 = 1,600 grid points; each face's indices
-/// name vertices with its own corners' positions and normals.
+/// The wall's 3,042 triangles share the 40 x 40 = 1,600 grid points and their one normal;
+/// each face's indices name vertices with its own corners' positions and normals, and its
+/// texels are its corners' rounded texture coordinates.
 #[test]
 fn prepared_faces_index_their_shared_vertices() {
-    let wall = prepare_indexed(&wall_scene(), 0);
+    let wall = prepare(&wall_scene(), 0);
     assert_eq!(wall.faces.len(), 3042);
     assert_eq!(wall.vertices.len(), 1600);
+    assert_eq!(wall.normals.len(), 1);
     for (name, scene) in scenes() {
         for object in 0..scene.objects.len() {
-            let mesh = prepare_indexed(&scene, object);
+            let mesh = prepare(&scene, object);
             assert_eq!(mesh.faces.len(), mesh.indices.len(), "{name}");
             let face_vertices: usize = mesh.faces.iter().map(|f| if f.quad { 4 } else { 3 }).sum();
             assert!(mesh.vertices.len() <= face_vertices, "{name}");
-            for (face, indices) in mesh.faces.iter().zip(&mesh.indices) {
+            for ((face, indices), texels) in mesh.faces.iter().zip(&mesh.indices).zip(&mesh.texels)
+            {
                 let n = if face.quad { 4 } else { 3 };
-                for (corner, &i) in face.v.iter().zip(indices).take(n) {
+                for ((corner, &i), &texel) in face.v.iter().zip(indices).zip(texels).take(n) {
                     let v = mesh.vertices[i as usize];
                     assert_eq!(v.position, corner.position, "{name}");
                     assert_eq!(v.normal, corner.normal, "{name}");
+                    assert_eq!(texel, corner.texel(), "{name}");
                 }
             }
+            // Each vertex names its own normal in the table, which holds each normal once.
+            assert_eq!(mesh.normal_of.len(), mesh.vertices.len(), "{name}");
+            for (v, &m) in mesh.vertices.iter().zip(&mesh.normal_of) {
+                assert_eq!(mesh.normals[m as usize], v.normal, "{name}");
+            }
+            let mut distinct = mesh.normals.clone();
+            distinct.sort_by_key(|n| (n.x, n.y, n.z));
+            distinct.dedup();
+            assert_eq!(distinct.len(), mesh.normals.len(), "{name}");
         }
     }
 }

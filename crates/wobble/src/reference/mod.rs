@@ -9,9 +9,8 @@
 //! samples the scene at its integer coordinate, and the texel chosen is the nearest,
 //! `floor(u + 0.5)` (the GPU's +0.5 bias then truncation).
 
-use crate::pipeline::tessellate::{PreparedVertex, UV_FRACTION_BITS};
-use crate::pipeline::{object_rotation, prepare};
 use crate::scene::Scene;
+use crate::scene::prepared::{PreparedVertex, UV_FRACTION_BITS, prepare};
 use gte::typed::Vector3;
 
 /// A GTE vertex as f64.
@@ -150,7 +149,7 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
             color: f.color.map(f64::from),
         });
     for (index, object) in scene.objects.iter().enumerate() {
-        let rot = rotation(object_rotation(object, frame));
+        let rot = rotation(object.rotation_at(frame));
         let m: [[f64; 3]; 3] = std::array::from_fn(|r| {
             std::array::from_fn(|c| (0..3).map(|k| view[r][k] * rot[k][c]).sum())
         });
@@ -180,7 +179,7 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
                 }
             }
         };
-        for face in prepare(scene, index) {
+        for face in prepare(scene, index).faces {
             let n = if face.quad { 4 } else { 3 };
             // GP0 quad order v0 v1 v2 v3 -> polygon order v0 v1 v3 v2.
             let order: &[usize] = if face.quad { &[0, 1, 3, 2] } else { &[0, 1, 2] };

@@ -5,6 +5,7 @@ pub mod animation;
 pub mod default;
 mod file;
 pub mod mesh;
+pub mod prepared;
 pub mod quantize;
 pub mod texture;
 pub mod vram_alloc;
@@ -151,6 +152,14 @@ pub struct Object {
     /// Tessellation level 0..=4: how many times a large or near polygon may be split into
     /// four before projection (`pipeline/mod.rs`, `pipeline/tessellate.rs`).
     pub tessellation: u8,
+}
+
+impl Object {
+    /// The rotation in degrees at `frame`: the frame-0 rotation plus `frame` times the spin.
+    pub fn rotation_at(&self, frame: u32) -> [f64; 3] {
+        let f = f64::from(frame);
+        std::array::from_fn(|i| self.rotation[i] + self.spin[i] * f)
+    }
 }
 
 /// A named texture.

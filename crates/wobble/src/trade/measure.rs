@@ -3,11 +3,10 @@
 
 use super::heat::heat_map;
 use super::{Knob, Row, TradeSettings, configs};
-use crate::pipeline::{
-    PipelineOptions, RenderError, Renderer, UnsupportedKnob, object_transform, prepare,
-};
+use crate::pipeline::{PipelineOptions, RenderError, Renderer, UnsupportedKnob, object_transform};
 use crate::reference::{self, ReferenceFrame, rotation};
 use crate::scene::Scene;
+use crate::scene::prepared::prepare;
 use crate::scene::texture::Texture;
 use gpu::TextureDepth;
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
@@ -134,6 +133,7 @@ pub fn vertex_jitter(
     let (mut sum, mut count) = (0.0, 0usize);
     for (index, object) in scene.objects.iter().enumerate() {
         let vertices: Vec<Vector3> = prepare(scene, index)
+            .faces
             .iter()
             .flat_map(|f| f.v[..if f.quad { 4 } else { 3 }].to_vec())
             .map(|v| v.position)
@@ -143,7 +143,7 @@ pub fn vertex_jitter(
             let (rt, tr) = object_transform(scene, object, frame);
             g.set_rotation(&rt);
             g.set_translation(tr);
-            let rot = rotation(crate::pipeline::object_rotation(object, frame));
+            let rot = rotation(object.rotation_at(frame));
             let rel: [f64; 3] =
                 std::array::from_fn(|i| object.position[i] - scene.camera.position[i]);
             let mut hw = Vec::with_capacity(vertices.len());
