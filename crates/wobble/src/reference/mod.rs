@@ -5,23 +5,17 @@
 //! nearest texel; fog, where the scene has it, computed per pixel from the exact depth with
 //! the GTE's depth-cue curve (linear in 1/Z, docs/hardware/gte.md §5 step 7). Not hardware behaviour: the `gpu` crate stays hardware-faithful.
 //!
+//! An independent calculation: the geometry is computed here from the scene's own numbers
+//! (mesh positions, normals and texture coordinates as f64, the object's scale, rotation and
+//! position), sharing no code with the pipeline it measures: no 16-bit vertices, 1.3.12
+//! normals or matrices, 8.8 texels, or 1/4096-turn angles.
+//!
 //! Sampling convention, shared with the GPU so face-on views agree exactly: pixel (x, y)
 //! samples the scene at its integer coordinate, and the texel chosen is the nearest,
 //! `floor(u + 0.5)` (the GPU's +0.5 bias then truncation).
 
-use crate::scene::Scene;
-use crate::scene::prepared::{PreparedVertex, UV_FRACTION_BITS, prepare};
-use gte::typed::Vector3;
-
-/// A GTE vertex as f64.
-fn position(v: Vector3) -> [f64; 3] {
-    [v.x as f64, v.y as f64, v.z as f64]
-}
-
-/// A 1.3.12 normal as f64.
-fn unit(v: Vector3) -> [f64; 3] {
-    position(v).map(|c| c / 4096.0)
-}
+use crate::scene::mesh::MeshVertex;
+use crate::scene::{Object, Scene};
 
 /// One reference frame.
 #[derive(Clone, Debug)]
@@ -119,6 +113,103 @@ struct Surface<'a> {
     fog: Option<FogCurve>,
 }
 
+/// The directional light as the reference applies it: the unit vector towards the light,
+/// the light colour and the ambient colour, 0..1.
+type Lamp = ([f64; 3], [f64; 3], [f64; 3]);
+
+fn lamp(scene: &Scene) -> Option<Lamp> {
+    scene.light.map(|l| {
+        let d = l.direction;
+        let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
+        (
+            d.map(|c| -c / len),
+            l.color.map(|c| c as f64 / 255.0),
+            l.ambient.map(|c| c as f64 / 255.0),
+        )
+    })
+}
+
+/// An object's polygons in camera space, computed here in f64 from the scene's own numbers
+/// (nothing of the pipeline's fixed-point preparation): mesh positions times the object's
+/// scale, turned by its exact rotation at `frame` and the camera's, moved by its position
+/// relative to the camera; texture coordinates in texels by the scene's rule (a face's
+/// coordinates shifted by whole repeats to start in the first repeat, 0..1 spanning texels
+/// 0..size-1, docs/formats.md), with no rounding or clamping; colours lit per vertex from
+/// the mesh's normal. Quads come in polygon order (GP0's v0 v1 v2 v3 is v0 v1 v3 v2 around
+/// the edge); a face naming a vertex the mesh lacks is skipped.
+fn camera_polygons(scene: &Scene, object: &Object, frame: u32) -> Vec<Vec<CamVertex>> {
+    let Some(mesh) = scene.meshes.get(object.mesh).map(|m| &m.mesh) else {
+        return Vec::new();
+    };
+    let view = rotation(scene.camera.rotation);
+    let rot = rotation(object.rotation_at(frame));
+    let m: [[f64; 3]; 3] = std::array::from_fn(|r| {
+        std::array::from_fn(|c| (0..3).map(|k| view[r][k] * rot[k][c]).sum())
+    });
+    let rel: [f64; 3] = std::array::from_fn(|i| object.position[i] - scene.camera.position[i]);
+    let t = mul(&view, rel);
+    let span = object
+        .texture
+        .and_then(|i| scene.textures.get(i))
+        .map_or([1.0, 1.0], |t| {
+            [
+                f64::from(t.texture.width) - 1.0,
+                f64::from(t.texture.height) - 1.0,
+            ]
+        });
+    let light = lamp(scene);
+    let base = object.color.map(f64::from);
+    let shade = |v: &MeshVertex| -> [f64; 3] {
+        match light {
+            None => base,
+            Some((to_light, color, ambient)) => {
+                let n = mul(&rot, v.normal);
+                let i = (n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2]).max(0.0);
+                std::array::from_fn(|k| (base[k] * (ambient[k] + color[k] * i)).min(255.0))
+            }
+        }
+    };
+    let mut polygons = Vec::with_capacity(mesh.faces.len());
+    for face in &mesh.faces {
+        let order: &[usize] = if face.quad { &[0, 1, 3, 2] } else { &[0, 1, 2] };
+        let corners: Option<Vec<&MeshVertex>> = order
+            .iter()
+            .map(|&k| mesh.vertices.get(face.indices[k] as usize))
+            .collect();
+        let Some(corners) = corners else {
+            continue;
+        };
+        let first_repeat = |axis: usize| {
+            corners
+                .iter()
+                .map(|v| v.uv[axis])
+                .fold(f64::INFINITY, f64::min)
+                .floor()
+        };
+        let start = [first_repeat(0), first_repeat(1)];
+        polygons.push(
+            corners
+                .iter()
+                .map(|v| {
+                    let p = mul(&m, v.position.map(|c| c * object.scale));
+                    let c = shade(v);
+                    CamVertex {
+                        p: [p[0] + t[0], p[1] + t[1], p[2] + t[2]],
+                        attr: [
+                            (v.uv[0] - start[0]) * span[0],
+                            (v.uv[1] - start[1]) * span[1],
+                            c[0],
+                            c[1],
+                            c[2],
+                        ],
+                    }
+                })
+                .collect(),
+        );
+    }
+    polygons
+}
+
 /// Screen-space vertex: position, 1/z, attributes divided by z.
 #[derive(Clone, Copy)]
 struct ScreenVertex {
@@ -139,7 +230,6 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
     let mut texel = vec![None; width * height];
     let mut texture_size = vec![None; width * height];
     let mut depth = vec![0.0f64; width * height];
-    let view = rotation(scene.camera.rotation);
     let fog = scene
         .fog
         .filter(|f| f.near > 0.0 && f.far > f.near)
@@ -148,60 +238,12 @@ pub fn render(scene: &Scene, frame: u32) -> ReferenceFrame {
             inv_far: 1.0 / f.far,
             color: f.color.map(f64::from),
         });
-    for (index, object) in scene.objects.iter().enumerate() {
-        let rot = rotation(object.rotation_at(frame));
-        let m: [[f64; 3]; 3] = std::array::from_fn(|r| {
-            std::array::from_fn(|c| (0..3).map(|k| view[r][k] * rot[k][c]).sum())
-        });
-        let rel: [f64; 3] = std::array::from_fn(|i| object.position[i] - scene.camera.position[i]);
-        let t = mul(&view, rel);
+    for object in &scene.objects {
         let texture = object
             .texture
             .and_then(|i| scene.textures.get(i))
             .map(|t| &t.texture);
-        let light = scene.light.map(|l| {
-            let d = l.direction;
-            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-12);
-            (
-                d.map(|c| -c / len),
-                l.color.map(|c| c as f64 / 255.0),
-                l.ambient.map(|c| c as f64 / 255.0),
-            )
-        });
-        let shade = |v: &PreparedVertex| -> [f64; 3] {
-            let base = object.color.map(|c| c as f64);
-            match light {
-                None => base,
-                Some((to_light, color, ambient)) => {
-                    let n = mul(&rot, unit(v.normal));
-                    let i = (n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2]).max(0.0);
-                    std::array::from_fn(|k| (base[k] * (ambient[k] + color[k] * i)).min(255.0))
-                }
-            }
-        };
-        for face in prepare(scene, index).faces {
-            let n = if face.quad { 4 } else { 3 };
-            // GP0 quad order v0 v1 v2 v3 -> polygon order v0 v1 v3 v2.
-            let order: &[usize] = if face.quad { &[0, 1, 3, 2] } else { &[0, 1, 2] };
-            let poly: Vec<CamVertex> = order
-                .iter()
-                .take(n)
-                .map(|&k| {
-                    let v = &face.v[k];
-                    let p = mul(&m, position(v.position));
-                    let c = shade(v);
-                    CamVertex {
-                        p: [p[0] + t[0], p[1] + t[1], p[2] + t[2]],
-                        attr: [
-                            v.uv[0] as f64 / (1 << UV_FRACTION_BITS) as f64,
-                            v.uv[1] as f64 / (1 << UV_FRACTION_BITS) as f64,
-                            c[0],
-                            c[1],
-                            c[2],
-                        ],
-                    }
-                })
-                .collect();
+        for poly in camera_polygons(scene, object, frame) {
             let clipped = clip_near(&poly, near);
             if clipped.len() < 3 {
                 continue;
