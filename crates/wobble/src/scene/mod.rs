@@ -7,6 +7,7 @@ mod file;
 pub mod mesh;
 pub mod prepared;
 pub mod quantize;
+pub mod texel;
 pub mod texture;
 pub mod vram_alloc;
 

@@ -9,7 +9,7 @@
 //! the image-rs project, no dependencies, good palettes for photographic input at small
 //! sizes; it is also what `image`'s GIF encoder uses).
 
-use super::texture::to_1555;
+use super::texel::to_1555;
 
 /// The CLUT (at most `size` entries, before padding) and per-pixel indices for `pixels`
 /// whose 1555 colours are `colors`: the distinct colours themselves when they fit, otherwise

@@ -1,7 +1,9 @@
 //! Textures: RGBA images prepared as 4-bit or 8-bit CLUT textures, or 15-bit direct ones,
-//! in the GPU's 1555 format (docs/hardware/gpu.md §1, §7); the palette choice is in `quantize`.
+//! in the GPU's 1555 format (docs/hardware/gpu.md §1, §7); the palette choice is in `quantize`,
+//! the conversion of one pixel in `texel`.
 
 use super::quantize;
+use super::texel::to_1555;
 use gpu::TextureDepth;
 use std::fmt;
 use std::path::{Path, PathBuf};
@@ -198,16 +200,6 @@ impl std::error::Error for TextureError {
     }
 }
 
-/// 8-bit RGBA to a 1555 texel: alpha below 128 is transparent (0000h); pure black becomes
-/// 8000h, which the GPU draws as opaque black (0000h would be transparent).
-pub fn to_1555(rgba: [u8; 4]) -> u16 {
-    if rgba[3] < 128 {
-        return 0;
-    }
-    let c = (rgba[0] >> 3) as u16 | ((rgba[1] >> 3) as u16) << 5 | ((rgba[2] >> 3) as u16) << 10;
-    if c == 0 { 0x8000 } else { c }
-}
-
 impl Texture {
     /// Largest texture side: one texture page is 256x256 texels.
     pub const MAX_SIDE: u32 = 256;
@@ -371,13 +363,6 @@ impl Texture {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn black_and_transparent() {
-        assert_eq!(to_1555([0, 0, 0, 255]), 0x8000);
-        assert_eq!(to_1555([255, 255, 255, 0]), 0);
-        assert_eq!(to_1555([255, 8, 0, 255]), 31 | 1 << 5);
-    }
 
     #[test]
     fn packs_4bit_low_nibble_first() {
