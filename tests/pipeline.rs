@@ -483,7 +483,7 @@ mod properties {
                 .max()
                 .unwrap_or(0);
             let mut alloc =
-                wobble::scene::vram_alloc::VramAllocator::new(width, height, widest_clut);
+                wobble::pipeline::vram_alloc::VramAllocator::new(width, height, widest_clut);
             // Rectangles (x, y, w, h) in halfwords.
             let mut used = vec![(0u32, 0u32, u32::from(width), 2 * u32::from(height))];
             for (i, &(d, w, h)) in textures.iter().enumerate() {

@@ -17,12 +17,12 @@ pub mod tessellate;
 #[cfg(test)]
 mod tests;
 mod trace;
+pub mod vram_alloc;
 
 pub use object::{angle, object_transform};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::prepared::prepare;
-use crate::scene::vram_alloc::{VramAllocError, VramAllocator};
 use crate::scene::{Camera, InvalidScene, Scene};
 use gpu::TextureDepth;
 use gpu::{DisplayArea, Gpu};
@@ -35,6 +35,7 @@ use object::PreparedObject;
 use std::fmt;
 use std::time::{Duration, Instant};
 use tessellate::{MAX_LEVEL, SplitStack};
+use vram_alloc::{VramAllocError, VramAllocator};
 
 /// Ordering-table entries.
 pub const OT_DEPTH: usize = 2048;

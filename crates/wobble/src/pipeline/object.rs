@@ -1,8 +1,8 @@
 //! Objects as the pipeline draws them (their mesh in GTE units, tessellation level and
 //! texture placement), and the per-frame rotation and translation loaded into RT and TR.
 
+use super::vram_alloc::Placement;
 use crate::scene::prepared::PreparedMesh;
-use crate::scene::vram_alloc::Placement;
 use crate::scene::{Object, Scene};
 use gte::typed::{Matrix, Translation};
 

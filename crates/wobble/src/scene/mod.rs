@@ -9,7 +9,6 @@ pub mod prepared;
 pub mod quantize;
 pub mod texel;
 pub mod texture;
-pub mod vram_alloc;
 
 use mesh::{Mesh, MeshError};
 use serde::Deserialize;

@@ -8,7 +8,7 @@
 //! line) when every CLUT has 16 entries, four columns (x 768..1023, one 8-bit CLUT to a line)
 //! when a scene has an 8-bit texture.
 
-use super::texture::Texture;
+use crate::scene::texture::Texture;
 use gpu::{BlendMode, ClutAttr, Texpage, TextureDepth};
 use std::fmt;
 
