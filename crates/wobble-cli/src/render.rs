@@ -287,7 +287,9 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     let mut last_image = None;
     let mut inspect_summary = None;
     for frame in 0..frames {
-        animation.pose(&mut renderer, &base, frame)?;
+        renderer
+            .pose(&animation, &base, frame)
+            .map_err(|e| e.to_string())?;
         let stats = match &inspect_dir {
             Some(dir) if frame + 1 == frames => {
                 let (stats, trace) = renderer.render_frame_traced(frame)?;

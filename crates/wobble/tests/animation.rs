@@ -6,10 +6,10 @@
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
 use wobble::pipeline::{PipelineOptions, Renderer, object_transform};
 use wobble::reference;
-use wobble::scene::Scene;
 use wobble::scene::animation::Animation;
 use wobble::scene::default::{CUBE, FLOOR, SPHERE, WALL, default_animation};
 use wobble::scene::prepared::prepare;
+use wobble::scene::{InvalidScene, Scene};
 use wobble::trade::{coordinate_scene, texel_errors};
 
 /// The hardware path with every non-hardware knob off.
@@ -62,7 +62,7 @@ fn default_animation_is_deterministic() {
         let mut r = Renderer::new(base.clone(), hardware()).unwrap();
         let mut bytes = Vec::new();
         for frame in [0, 30, 60, 89] {
-            animation.pose(&mut r, &base, frame).unwrap();
+            r.pose(&animation, &base, frame).unwrap();
             r.render_frame(frame);
             bytes.extend_from_slice(r.image().as_raw());
         }
@@ -331,4 +331,34 @@ fn lit_sphere_is_dithered() {
     assert!(dithered > 0.10, "dithered {dithered}");
     assert!(plain < 0.02, "undithered {plain}");
     assert!(smooth < 0.02, "reference {smooth}");
+}
+
+/// Posing checks each frame's positions as `Scene::validate` checks a scene's (within
+/// +-1000000, docs/formats.md, "Limits"): an object drifting past the limit is refused at the
+/// first frame beyond it, with the frame and the field named; the frame before is posed.
+#[test]
+fn pose_refuses_the_first_frame_out_of_range() {
+    let base = Scene::default_scene();
+    let step = 100_000.0;
+    let animation = Animation {
+        drift: vec![(0, [0.0, 0.0, step])],
+        ..Animation::still(100)
+    };
+    let z = base.objects[0].position[2];
+    let first_bad = ((1e6 - z) / step).floor() as u32 + 1;
+    let mut r = Renderer::new(base.clone(), hardware()).unwrap();
+    assert!(r.pose(&animation, &base, first_bad - 1).is_ok());
+    let e = r.pose(&animation, &base, first_bad).unwrap_err();
+    assert_eq!(e.frame, first_bad);
+    assert!(
+        matches!(e.source, InvalidScene::Number { .. }),
+        "{:?}",
+        e.source
+    );
+    assert!(
+        e.to_string().starts_with(&format!(
+            "animation frame {first_bad}: object 1: position[2]"
+        )),
+        "{e}"
+    );
 }

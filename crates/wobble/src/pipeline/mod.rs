@@ -22,6 +22,7 @@ pub mod vram_alloc;
 pub use object::{angle, object_transform};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
+use crate::scene::animation::Animation;
 use crate::scene::prepared::prepare;
 use crate::scene::{Camera, InvalidScene, Scene};
 use gpu::TextureDepth;
@@ -206,6 +207,27 @@ impl std::error::Error for RenderError {
             RenderError::Unsupported(e) => Some(e),
             RenderError::OrderingTable(e) => Some(e),
         }
+    }
+}
+
+/// An animation that poses a scene out of range at one of its frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PoseError {
+    /// The frame.
+    pub frame: u32,
+    /// What is out of range.
+    pub source: InvalidScene,
+}
+
+impl fmt::Display for PoseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "animation frame {}: {}", self.frame, self.source)
+    }
+}
+
+impl std::error::Error for PoseError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.source)
     }
 }
 
@@ -419,6 +441,26 @@ impl Renderer {
         self.scene.validate_position(object, position)?;
         if let Some(o) = self.scene.objects.get_mut(object) {
             o.position = position;
+        }
+        Ok(())
+    }
+
+    /// Pose the renderer, built from `base`, for frame `frame` of `animation` (before
+    /// `render_frame(frame)`): the camera on its path, drifting objects at their positions.
+    pub fn pose(
+        &mut self,
+        animation: &Animation,
+        base: &Scene,
+        frame: u32,
+    ) -> Result<(), PoseError> {
+        let err = |source| PoseError { frame, source };
+        self.set_camera(animation.camera_at(&base.camera, frame))
+            .map_err(err)?;
+        for (i, o) in base.objects.iter().enumerate() {
+            if animation.drift.iter().any(|(d, _)| *d == i) {
+                self.set_object_position(i, animation.position_at(i, o.position, frame))
+                    .map_err(err)?;
+            }
         }
         Ok(())
     }

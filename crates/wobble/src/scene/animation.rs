@@ -1,9 +1,9 @@
 //! Animation: a camera path through key poses and objects drifting at a constant velocity,
 //! on top of the per-frame spin every object already has. A scene file has none (its camera
-//! stands still); the built-in scene has one (`scene/default.rs`, docs/animation.md).
+//! stands still); the built-in scene has one (`scene/default.rs`, docs/animation.md). The
+//! renderer is posed frame by frame with `pipeline::Renderer::pose`.
 
-use super::{Camera, InvalidScene, Scene};
-use crate::pipeline::Renderer;
+use super::{Camera, Scene};
 
 /// A camera path and object drift over a fixed number of frames.
 #[derive(Clone, Debug, PartialEq)]
@@ -78,22 +78,6 @@ impl Animation {
             o.position = self.position_at(i, o.position, frame);
         }
         s
-    }
-
-    /// Pose a renderer built from `scene` for `frame` (before `render_frame(frame)`).
-    pub fn pose(&self, renderer: &mut Renderer, scene: &Scene, frame: u32) -> Result<(), String> {
-        let err = |e: InvalidScene| format!("animation frame {frame}: {e}");
-        renderer
-            .set_camera(self.camera_at(&scene.camera, frame))
-            .map_err(err)?;
-        for (i, o) in scene.objects.iter().enumerate() {
-            if self.drift.iter().any(|(d, _)| *d == i) {
-                renderer
-                    .set_object_position(i, self.position_at(i, o.position, frame))
-                    .map_err(err)?;
-            }
-        }
-        Ok(())
     }
 }
 
