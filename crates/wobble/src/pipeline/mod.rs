@@ -12,7 +12,9 @@ mod clip;
 mod gpu_stage;
 mod gte_stage;
 pub mod object;
+mod options;
 mod ot_stage;
+mod stats;
 pub mod tessellate;
 #[cfg(test)]
 mod tests;
@@ -20,6 +22,9 @@ mod trace;
 pub mod vram_alloc;
 
 pub use object::{angle, object_transform};
+pub use options::{DEFAULT_SPLIT_EXTENT, PipelineOptions, UnsupportedKnob};
+pub use ot_stage::{MAX_POLYGONS, OT_DEPTH, OT_SHIFT};
+pub use stats::{FrameStats, cap_message};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::animation::Animation;
@@ -29,42 +34,13 @@ use gpu::TextureDepth;
 use gpu::{DisplayArea, Gpu};
 use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
-use gte::DivideMode;
 use gte::typed::Geometry;
 use gte_stage::{LitNormal, ProjectedFace, SharedProjection};
 use object::PreparedObject;
 use std::fmt;
-use std::time::{Duration, Instant};
+use std::time::Instant;
 use tessellate::{MAX_LEVEL, SplitStack};
 use vram_alloc::{VramAllocError, VramAllocator};
-
-/// Ordering-table entries.
-pub const OT_DEPTH: usize = 2048;
-/// OTZ to OT index: OTZ (the mean SZ) >> this.
-pub const OT_SHIFT: u32 = 3;
-
-/// Most polygons one frame can draw: sizes the scratch list and the primitive buffer (13
-/// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
-pub const MAX_POLYGONS: usize = 1 << 17;
-
-/// What to say when frames reached [`MAX_POLYGONS`]: the cap, why it is there, and how to
-/// stay under it. `None` when no frame did.
-pub fn cap_message(stats: &FrameStats) -> Option<String> {
-    (stats.capped > 0).then(|| {
-        format!(
-            "{} reached the per-frame cap of {MAX_POLYGONS} polygons (the primitive \
-             buffer must fit the console's RAM): polygons past it were dropped. To draw them \
-             all, lower the mesh's face count or the tessellation level (`--tessellation 0`, \
-             or `tessellation` in the scene), or split the model across frames; the cap \
-             itself is `MAX_POLYGONS` in crates/wobble/src/pipeline/mod.rs",
-            if stats.capped == 1 {
-                "1 frame".to_string()
-            } else {
-                format!("{} frames", stats.capped)
-            }
-        )
-    })
-}
 
 /// Fractional bits of the sub-pixel screen positions the precise path draws at (1/16 pixel,
 /// the GPU's `precise::SUBPIXEL_BITS`).
@@ -81,98 +57,6 @@ pub(crate) struct SubpixelVertex {
     pub(crate) x: i32,
     pub(crate) y: i32,
     pub(crate) inv_z: u32,
-}
-
-/// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
-/// are split while their object's tessellation level allows.
-pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
-
-/// Knobs, all defaulting to what the scene says and to hardware behaviour.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PipelineOptions {
-    /// Override every object's tessellation level (0..=4).
-    pub tessellation: Option<u8>,
-    /// A polygon whose screen bounding box is wider or taller than this many pixels is split
-    /// (up to its object's tessellation level); 0 splits every polygon to the full level.
-    pub split_extent: u16,
-    /// Override the scene's dithering.
-    pub dither: Option<bool>,
-    /// GTE divide (hardware UNR by default).
-    pub divide_mode: DivideMode,
-    /// Non-hardware: keep 4 fractional bits of each screen position (the GTE's 16.16 result
-    /// before its truncation to whole pixels) and rasterize with the precise path.
-    pub subpixel: bool,
-    /// Non-hardware: perspective-correct texture coordinates (the precise path with 1/SZ
-    /// per vertex) instead of the GPU's affine stepping.
-    pub perspective_uv: bool,
-}
-
-impl PipelineOptions {
-    /// Whether polygons go through the non-hardware precise rasterizer (never, when built
-    /// without the `accuracy-knobs` feature: such options are refused by [`Self::check`]).
-    pub fn precise(&self) -> bool {
-        cfg!(feature = "accuracy-knobs") && (self.subpixel || self.perspective_uv)
-    }
-
-    /// The first knob these options turn that this build does not include: every
-    /// non-hardware knob (a divide other than UNR, sub-pixel vertices, perspective-correct
-    /// texture coordinates) needs the `accuracy-knobs` feature.
-    pub fn check(&self) -> Result<(), UnsupportedKnob> {
-        if cfg!(feature = "accuracy-knobs") {
-            return Ok(());
-        }
-        if self.divide_mode != DivideMode::Unr {
-            Err(UnsupportedKnob::Divide(self.divide_mode))
-        } else if self.subpixel {
-            Err(UnsupportedKnob::Subpixel)
-        } else if self.perspective_uv {
-            Err(UnsupportedKnob::PerspectiveUv)
-        } else {
-            Ok(())
-        }
-    }
-}
-
-/// A non-hardware knob asked of a build without the `accuracy-knobs` feature.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum UnsupportedKnob {
-    /// A GTE divide other than the hardware's UNR divide.
-    Divide(DivideMode),
-    /// Sub-pixel vertex positions.
-    Subpixel,
-    /// Perspective-correct texture coordinates.
-    PerspectiveUv,
-}
-
-impl fmt::Display for UnsupportedKnob {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let knob = match self {
-            UnsupportedKnob::Divide(DivideMode::Exact) => "the exact GTE divide",
-            UnsupportedKnob::Divide(DivideMode::F32) => "the f32 GTE divide",
-            UnsupportedKnob::Divide(DivideMode::Unr) => "the UNR GTE divide",
-            UnsupportedKnob::Subpixel => "sub-pixel vertices",
-            UnsupportedKnob::PerspectiveUv => "perspective-correct texture coordinates",
-        };
-        write!(
-            f,
-            "{knob} is not built: it needs the `accuracy-knobs` feature of the wobble crate"
-        )
-    }
-}
-
-impl std::error::Error for UnsupportedKnob {}
-
-impl Default for PipelineOptions {
-    fn default() -> Self {
-        Self {
-            tessellation: None,
-            split_extent: DEFAULT_SPLIT_EXTENT,
-            dither: None,
-            divide_mode: DivideMode::default(),
-            subpixel: false,
-            perspective_uv: false,
-        }
-    }
 }
 
 /// Why a renderer could not be built.
@@ -228,47 +112,6 @@ impl fmt::Display for PoseError {
 impl std::error::Error for PoseError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         Some(&self.source)
-    }
-}
-
-/// What one frame did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FrameStats {
-    /// Polygons examined after splitting: each ends drawn, culled, off screen or dropped.
-    pub polygons: usize,
-    /// Polygons linked into the ordering table and drawn.
-    pub drawn: usize,
-    /// Back faces removed by NCLIP.
-    pub culled: usize,
-    /// Polygons entirely off screen.
-    pub offscreen: usize,
-    /// Polygons dropped whole: a vertex behind the near plane (SZ3 or divide overflow flag),
-    /// a saturated SX/SY, or an extent the GPU would drop; also polygons past the
-    /// per-frame cap ([`MAX_POLYGONS`]), see `capped`.
-    pub dropped: usize,
-    /// Frames that filled the polygon list to [`MAX_POLYGONS`]: further polygons in them
-    /// were dropped (counted in `dropped`). 0 or 1 for one frame, summed by `accumulate`.
-    pub capped: usize,
-    /// Time in GTE work (transform, project, cull, light, AVSZ).
-    pub gte: Duration,
-    /// Time building packets and linking them into the ordering table.
-    pub ot: Duration,
-    /// Time in the GPU (environment, OT walk, rasterization).
-    pub gpu: Duration,
-}
-
-impl FrameStats {
-    /// Add another frame's counts and times.
-    pub fn accumulate(&mut self, other: &FrameStats) {
-        self.polygons += other.polygons;
-        self.drawn += other.drawn;
-        self.culled += other.culled;
-        self.offscreen += other.offscreen;
-        self.dropped += other.dropped;
-        self.capped += other.capped;
-        self.gte += other.gte;
-        self.ot += other.ot;
-        self.gpu += other.gpu;
     }
 }
 

@@ -5,6 +5,15 @@
 use super::gte_stage::ProjectedFace;
 use super::{FrameStats, Renderer};
 
+/// Ordering-table entries.
+pub const OT_DEPTH: usize = 2048;
+/// OTZ to OT index: OTZ (the mean SZ) >> this.
+pub const OT_SHIFT: u32 = 3;
+
+/// Most polygons one frame can draw: sizes the scratch list and the primitive buffer (13
+/// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
+pub const MAX_POLYGONS: usize = 1 << 17;
+
 impl ProjectedFace {
     /// The GP0 polygon packet of this face, written to the start of `out`; returns its
     /// length. Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the
