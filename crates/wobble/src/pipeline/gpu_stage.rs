@@ -4,9 +4,9 @@
 
 use super::Renderer;
 #[cfg(feature = "accuracy-knobs")]
-use super::SubpixelVertex;
+use super::polygon::ProjectedFace;
 #[cfg(feature = "accuracy-knobs")]
-use super::gte_stage::ProjectedFace;
+use super::precise::SubpixelVertex;
 use gpu::Gpu;
 
 /// Draw one polygon through the GPU's non-hardware precise path: the same GP0 packet (and

@@ -5,206 +5,15 @@
 //! positions, goes through its own RTPT/RTPS, NCLIP and NCCT/NCDT instead.
 
 use super::clip::{Verdict, classify};
+use super::lighting::{LitNormal, light, light_shared};
 use super::object::{angle, object_transform};
+use super::polygon::{ProjectedFace, rgb_word};
+use super::precise::subpixel_vertices;
+use super::projection::{project_shared, transform, transform_shared};
 use super::trace::{FaceFate, FaceRecord};
-use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer, SUBPIXEL_BITS, SubpixelVertex};
-use crate::scene::prepared::{PreparedFace, SharedVertex, to_fixed};
-use gte::Flag;
-use gte::typed::{Geometry, I4F12, I8F8, I8F24, I16F16, Matrix, Projection, Vector3};
-
-/// A polygon after the GTE stage, waiting for its packet.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct ProjectedFace {
-    pub(super) xy: [(i16, i16); 4],
-    /// Vertex colours as GP0 colour words: R in bits 0-7, G 8-15, B 16-23.
-    pub(super) color: [u32; 4],
-    pub(super) uv: [(u8, u8); 4],
-    pub(super) quad: bool,
-    pub(super) ot_index: u16,
-    pub(super) texture: Option<(u32, u32)>,
-    pub(super) blend: Option<u8>,
-}
-
-/// A polygon's vertices after RTPT/RTPS and NCLIP, before the clip verdict.
-struct Transformed {
-    flag: Flag,
-    area: i32,
-    xy: [(i16, i16); 4],
-    sz: [u16; 4],
-    ir0: I4F12,
-    /// Screen positions in 1/16 pixel from the 16.16 values before truncation
-    /// (docs/hardware/gte.md §5 step 6), when the sub-pixel knob is on.
-    fine: Option<[(i32, i32); 4]>,
-}
-
-/// RTPT (and RTPS for a quad's fourth vertex) and NCLIP; with `subpixel`, one RTPS per
-/// vertex instead, keeping each vertex's 16.16 screen position. Three RTPS leave the same
-/// SXY/SZ FIFOs, IR0 and FLAG (ORed over the commands) as one RTPT (docs/hardware/gte.md §5).
-fn transform(g: &mut Geometry, face: &PreparedFace, subpixel: bool) -> Transformed {
-    let v = &face.v;
-    let n = if face.quad { 4 } else { 3 };
-    if subpixel {
-        let mut t = Transformed {
-            flag: Flag::default(),
-            area: 0,
-            xy: [(0, 0); 4],
-            sz: [0; 4],
-            ir0: I4F12::ZERO,
-            fine: None,
-        };
-        let mut fine = [(0, 0); 4];
-        for k in 0..n {
-            let s = g.project_subpixel(v[k].position);
-            let p = s.projected;
-            t.flag = t.flag.union(p.flag);
-            t.xy[k] = (p.x, p.y);
-            t.sz[k] = p.sz;
-            t.ir0 = p.ir0;
-            fine[k] = (
-                s.x.to_bits() >> (16 - SUBPIXEL_BITS),
-                s.y.to_bits() >> (16 - SUBPIXEL_BITS),
-            );
-            if k == 2 {
-                t.area = g.nclip_current();
-            }
-        }
-        t.fine = Some(fine);
-        return t;
-    }
-    let p = g.project_triangle([v[0].position, v[1].position, v[2].position]);
-    let area = g.nclip_current();
-    let mut t = Transformed {
-        flag: p.flag,
-        area,
-        xy: [p.xy[0], p.xy[1], p.xy[2], (0, 0)],
-        sz: [p.sz[0], p.sz[1], p.sz[2], 0],
-        ir0: p.ir0,
-        fine: None,
-    };
-    if face.quad {
-        let q = g.project(v[3].position);
-        t.flag = t.flag.union(q.flag);
-        t.xy[3] = (q.x, q.y);
-        t.sz[3] = q.sz;
-        t.ir0 = q.ir0;
-    }
-    t
-}
-
-/// A shared vertex after its RTPS.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct SharedProjection {
-    xy: (i16, i16),
-    /// SXY as the GTE holds it: X in bits 0-15, Y in bits 16-31.
-    sxy: u32,
-    sz: u16,
-    ir0: I4F12,
-    flag: Flag,
-}
-
-/// One of an object's distinct normals, and its colour once a drawn face has lit it.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct LitNormal {
-    /// What `color` was computed for: the IR0 bits NCDS faded it by (0 for NCCS, which
-    /// does not fade), or [`UNLIT`].
-    lit: i32,
-    /// R in bits 0-7, G 8-15, B 16-23.
-    color: u32,
-}
-
-impl Default for LitNormal {
-    fn default() -> Self {
-        Self {
-            lit: UNLIT,
-            color: 0,
-        }
-    }
-}
-
-/// [`LitNormal::lit`] of a normal no face has lit yet this frame.
-const UNLIT: i32 = -1;
-
-/// One RTPS per shared vertex of an object, as games run RTPS/RTPT over a vertex list into
-/// a scratch buffer. Each vertex gets its SXY, SZ, IR0 and FLAG from its own command: what
-/// RTPT leaves for it, as its steps 5.1-5.6 run per vertex (docs/hardware/gte.md §5).
-///
-/// As a game's loop does it: V0 loaded (VXY0, VZ0), RTPS, then SXY2, SZ3, IR0 and FLAG read
-/// back from their registers.
-fn project_shared(g: &mut Geometry, vertices: &[SharedVertex], out: &mut Vec<SharedProjection>) {
-    out.clear();
-    let gte = g.gte_mut();
-    out.extend(vertices.iter().map(|v| {
-        let p = v.position;
-        gte.write_data(0, u32::from(p.x as u16) | u32::from(p.y as u16) << 16);
-        gte.write_data(1, p.z as i32 as u32);
-        gte.execute(RTPS);
-        let sxy = gte.read_data(14);
-        SharedProjection {
-            xy: (sxy as u16 as i16, (sxy >> 16) as u16 as i16),
-            sxy,
-            sz: gte.read_data(19) as u16,
-            ir0: I4F12::from_bits(gte.read_data(8) as u16 as i16),
-            flag: gte.flag(),
-        }
-    }));
-}
-
-/// What an index outside the projected vertices reads (none does: the indices are the
-/// object's own).
-static UNPROJECTED: SharedProjection = SharedProjection {
-    xy: (0, 0),
-    sxy: 0,
-    sz: 0,
-    ir0: I4F12::ZERO,
-    flag: Flag::EMPTY,
-};
-
-/// The RTPS command word (sf = 1, as [`Geometry::project`] issues it).
-const RTPS: u32 = gte::typed::command(gte::Opcode::Rtps);
-
-/// A mesh face's vertices from their RTPS, and NCLIP on the first three loaded into SXY0-2.
-///
-/// Equal to [`transform`] for the clip verdict: FLAG is the OR of the vertices' FLAGs. The
-/// verdict reads only SZ3 saturation, divide overflow and SX2/SY2 saturation, which RTPT
-/// sets per vertex (docs/hardware/gte.md §5.4-5.6, §6); RTPT runs the depth cue (§5.7, IR0
-/// saturation and MAC0 flags) for its last vertex only, RTPS for each, so those bits may
-/// differ and are not read. IR0 is the last vertex's, SXY and SZ the vertices' own, and
-/// NCLIP is a function of SXY0-2 alone (§7).
-#[inline(always)]
-fn transform_shared(
-    g: &mut Geometry,
-    shared: &[SharedProjection],
-    indices: &[u32; 4],
-    quad: bool,
-) -> Transformed {
-    let n = if quad { 4 } else { 3 };
-    let mut t = Transformed {
-        flag: Flag::default(),
-        area: 0,
-        xy: [(0, 0); 4],
-        sz: [0; 4],
-        ir0: I4F12::ZERO,
-        fine: None,
-    };
-    let mut sxy = [0u32; 3];
-    for (k, &i) in indices.iter().enumerate().take(n) {
-        let v = shared.get(i as usize).unwrap_or(&UNPROJECTED);
-        t.flag = t.flag.union(v.flag);
-        t.xy[k] = v.xy;
-        t.sz[k] = v.sz;
-        t.ir0 = v.ir0;
-        if let Some(w) = sxy.get_mut(k) {
-            *w = v.sxy;
-        }
-    }
-    // SXY0-2 take the register words as RTPS left them.
-    let gte = g.gte_mut();
-    for (r, w) in (12..).zip(sxy) {
-        gte.write_data(r, w);
-    }
-    t.area = g.nclip_current();
-    t
-}
+use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
+use crate::scene::prepared::{PreparedFace, to_fixed};
+use gte::typed::{Geometry, I8F8, I8F24, I16F16, Matrix, Projection};
 
 /// Whether a polygon is split again rather than drawn, given its verdict.
 fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
@@ -224,119 +33,6 @@ fn drawn(verdict: Verdict, stats: &mut FrameStats) -> bool {
         Verdict::Draw { .. } => return true,
     }
     false
-}
-
-/// Vertex colours: NCCT/NCCS with a light, NCDT/NCDS with light and fog, DPCS with fog only.
-fn light(
-    g: &mut Geometry,
-    (lit, fogged): (bool, bool),
-    face: &PreparedFace,
-    base: [u8; 3],
-    ir0: I4F12,
-) -> [[u8; 3]; 4] {
-    let v = &face.v;
-    let mut color = [base; 4];
-    let normals = [v[0].normal, v[1].normal, v[2].normal];
-    match (lit, fogged) {
-        (true, false) => {
-            let c = g.normal_color_color_triple(normals, base);
-            color[..3].copy_from_slice(&c);
-            if face.quad {
-                color[3] = g.normal_color_color(v[3].normal, base);
-            }
-        }
-        // NCDT/NCDS fade by IR0 as the last RTPT/RTPS left it: one factor
-        // for the whole polygon, from its last vertex (docs/hardware/gte.md §5 step 7).
-        (true, true) => {
-            let c = g.normal_color_depth_triple(normals, base);
-            color[..3].copy_from_slice(&c);
-            if face.quad {
-                color[3] = g.normal_color_depth(v[3].normal, base);
-            }
-        }
-        (false, true) => color = [g.depth_cue(base, ir0); 4],
-        (false, false) => {}
-    }
-    color
-}
-
-/// [`light`] for a mesh face from its shared vertices: NCCS once per distinct normal a
-/// frame; with fog, NCDS with IR0 loaded with the face's factor (its last vertex's IR0, what
-/// NCDT reads after RTPT, docs/hardware/gte.md §5.7), once per normal and factor: a normal
-/// keeps the colour of the last factor it was faded by. NCCT and NCDT are NCCS and NCDS for
-/// each of three normals (§8), so the colours are the same.
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn light_shared(
-    g: &mut Geometry,
-    (lit, fogged): (bool, bool),
-    cache: &mut [LitNormal],
-    (normals, normal_of): (&[Vector3], &[u32]),
-    (indices, quad): (&[u32; 4], bool),
-    base: [u8; 3],
-    ir0: I4F12,
-) -> [u32; 4] {
-    let flat = rgb_word(base);
-    match (lit, fogged) {
-        (true, _) => {
-            let key = if fogged { i32::from(ir0.to_bits()) } else { 0 };
-            let mut ir0_loaded = false;
-            let mut vertex = |i: u32| {
-                let Some(&m) = normal_of.get(i as usize) else {
-                    return flat;
-                };
-                let Some(entry) = cache.get_mut(m as usize) else {
-                    return flat;
-                };
-                if entry.lit != key {
-                    let normal = normals.get(m as usize).copied().unwrap_or_default();
-                    entry.color = rgb_word(if fogged {
-                        if !ir0_loaded {
-                            g.gte_mut().write_data(8, ir0.to_bits() as i32 as u32);
-                            ir0_loaded = true;
-                        }
-                        g.normal_color_depth(normal, base)
-                    } else {
-                        g.normal_color_color(normal, base)
-                    });
-                    entry.lit = key;
-                }
-                entry.color
-            };
-            // The four words are made in registers and returned as one value.
-            let [a, b, c] = [vertex(indices[0]), vertex(indices[1]), vertex(indices[2])];
-            let d = if quad { vertex(indices[3]) } else { flat };
-            [a, b, c, d]
-        }
-        (false, true) => [rgb_word(g.depth_cue(base, ir0)); 4],
-        (false, false) => [flat; 4],
-    }
-}
-
-/// An 8-bit RGB colour as a GP0 colour word (R in bits 0-7, G 8-15, B 16-23).
-pub(super) fn rgb_word([r, g, b]: [u8; 3]) -> u32 {
-    u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
-}
-
-/// The precise rasterizer's vertices: whole-pixel or sub-pixel positions and 1/Z.
-fn precise_vertices_of(
-    xy: [(i16, i16); 4],
-    sz: [u16; 4],
-    fine: Option<[(i32, i32); 4]>,
-    quad: bool,
-) -> [SubpixelVertex; 4] {
-    let whole = xy.map(|(x, y)| (i32::from(x) << SUBPIXEL_BITS, i32::from(y) << SUBPIXEL_BITS));
-    let positions = fine.unwrap_or(whole);
-    let n = if quad { 4 } else { 3 };
-    let mut precise = [SubpixelVertex::default(); 4];
-    for k in 0..n {
-        precise[k] = SubpixelVertex {
-            x: positions[k].0,
-            y: positions[k].1,
-            inv_z: (1u32 << 24) / u32::from(sz[k]).max(1),
-        };
-    }
-    precise
 }
 
 /// AVSZ3/AVSZ4 for the ordering-table index, and the polygon as the packet stage takes it.
@@ -500,7 +196,7 @@ impl Renderer {
                             None => light(g, lighting, face, object.color, ir0).map(rgb_word),
                         };
                         if options.precise() {
-                            precise_vertices.push(precise_vertices_of(xy, sz, t.fine, face.quad));
+                            precise_vertices.push(subpixel_vertices(xy, sz, t.fine, face.quad));
                         }
                         // A mesh face's texels are rounded once, when the object is prepared.
                         let uv = match indices.and(prepared.mesh.texels.get(face_index)) {
@@ -533,8 +229,11 @@ impl Renderer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::prepared::{PreparedVertex, normal_table};
+    use crate::pipeline::precise::SUBPIXEL_BITS;
+    use crate::scene::prepared::{PreparedVertex, SharedVertex, normal_table};
+    use gte::Flag;
     use gte::typed::Translation;
+    use gte::typed::{I4F12, Matrix, Vector3};
     use proptest::prelude::*;
 
     fn vertex() -> impl Strategy<Value = Vector3> {

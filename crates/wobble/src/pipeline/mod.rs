@@ -11,9 +11,13 @@
 mod clip;
 mod gpu_stage;
 mod gte_stage;
+mod lighting;
 pub mod object;
 mod options;
 mod ot_stage;
+mod polygon;
+mod precise;
+mod projection;
 mod stats;
 pub mod tessellate;
 #[cfg(test)]
@@ -35,29 +39,15 @@ use gpu::{DisplayArea, Gpu};
 use gpu::{OrderingTable, OtError};
 use gpu_stage::upload;
 use gte::typed::Geometry;
-use gte_stage::{LitNormal, ProjectedFace, SharedProjection};
+use lighting::LitNormal;
 use object::PreparedObject;
+use polygon::ProjectedFace;
+use precise::SubpixelVertex;
+use projection::SharedProjection;
 use std::fmt;
 use std::time::Instant;
 use tessellate::{MAX_LEVEL, SplitStack};
 use vram_alloc::{VramAllocError, VramAllocator};
-
-/// Fractional bits of the sub-pixel screen positions the precise path draws at (1/16 pixel,
-/// the GPU's `precise::SUBPIXEL_BITS`).
-pub(crate) const SUBPIXEL_BITS: u32 = 4;
-#[cfg(feature = "accuracy-knobs")]
-const _: () = assert!(SUBPIXEL_BITS == gpu::precise::SUBPIXEL_BITS);
-
-/// A vertex for the non-hardware precise path: position in 1/16 pixel relative to the drawing
-/// offset, and 1/Z scaled by 2^24 for perspective-correct texture coordinates.
-/// Without the knobs nothing draws them (`PipelineOptions::precise` is always false).
-#[derive(Clone, Copy, Debug, Default)]
-#[cfg_attr(not(feature = "accuracy-knobs"), allow(dead_code))]
-pub(crate) struct SubpixelVertex {
-    pub(crate) x: i32,
-    pub(crate) y: i32,
-    pub(crate) inv_z: u32,
-}
 
 /// Why a renderer could not be built.
 #[derive(Debug)]

@@ -2,7 +2,6 @@
 //! textured or not, semi-transparent or not) linked into the ordering table at its depth
 //! (docs/hardware/gpu.md §2, §6).
 
-use super::gte_stage::ProjectedFace;
 use super::{FrameStats, Renderer};
 
 /// Ordering-table entries.
@@ -13,66 +12,6 @@ pub const OT_SHIFT: u32 = 3;
 /// Most polygons one frame can draw: sizes the scratch list and the primitive buffer (13
 /// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
 pub const MAX_POLYGONS: usize = 1 << 17;
-
-impl ProjectedFace {
-    /// The GP0 polygon packet of this face, written to the start of `out`; returns its
-    /// length. Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the
-    /// flat packet, which the GPU draws without colour interpolation.
-    pub(super) fn packet(&self, out: &mut [u32; 12]) -> usize {
-        let n = if self.quad { 4 } else { 3 };
-        let gouraud = self.color[1..n].iter().any(|c| *c != self.color[0]);
-        let mut op = 0x20u32 | if self.quad { 0x08 } else { 0 };
-        if gouraud {
-            op |= 0x10;
-        }
-        if self.texture.is_some() {
-            op |= 0x04;
-        }
-        if self.blend.is_some() {
-            op |= 0x02;
-        }
-        let mut len = 0;
-        for i in 0..n {
-            let rgb = self.color[i];
-            if i == 0 {
-                out[len] = op << 24 | rgb;
-                len += 1;
-            } else if gouraud {
-                out[len] = rgb;
-                len += 1;
-            }
-            let (x, y) = self.xy[i];
-            out[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
-            len += 1;
-            if let Some((clut, tpage)) = self.texture {
-                let (u, v) = self.uv[i];
-                let attr = match i {
-                    0 => clut,
-                    1 => tpage,
-                    _ => 0,
-                };
-                out[len] = u as u32 | (v as u32) << 8 | attr << 16;
-                len += 1;
-            }
-        }
-        len
-    }
-
-    /// An untextured polygon has no texpage attribute to carry its blend mode: the draw-mode
-    /// word (E1h) that must reach GP0 just before it (docs/hardware/gpu.md §2, §6).
-    pub(super) fn blend_e1(&self, dither: bool) -> Option<u32> {
-        match (self.texture, self.blend) {
-            (None, Some(mode)) => {
-                let blend = gpu::Texpage {
-                    blend: gpu::BlendMode::from_bits(u32::from(mode)),
-                    ..gpu::Texpage::default()
-                };
-                Some(0xE100_0000 | (dither as u32) << 9 | blend.bits())
-            }
-            _ => None,
-        }
-    }
-}
 
 impl Renderer {
     pub(super) fn ot_stage(&mut self, stats: &mut FrameStats) {
