@@ -7,7 +7,40 @@ use super::Renderer;
 use super::polygon::ProjectedFace;
 #[cfg(feature = "accuracy-knobs")]
 use super::precise::SubpixelVertex;
-use gpu::Gpu;
+use gpu::{DisplayArea, Gpu};
+
+/// GP1(00h): reset the GPU.
+pub(super) const GP1_RESET: u32 = 0x0000_0000;
+/// GP1(03h) with bit 0 clear: display on.
+const GP1_DISPLAY_ON: u32 = 0x0300_0000;
+
+/// GP1(08h) for a screen `width` pixels wide: the width by bits 0-1 (256, 320, 512, 640)
+/// or bit 6 (368, also taken for any other width, which `Scene::validate` refuses), 240
+/// lines, NTSC, 15-bit colour, no interlace (docs/hardware/timing.md §4, §7).
+fn gp1_display_mode(width: u16) -> u32 {
+    let bits = match width {
+        256 => 0,
+        320 => 1,
+        512 => 2,
+        640 => 3,
+        _ => 0x40,
+    };
+    0x0800_0000 | bits
+}
+
+/// Turn the display on for `screen`: its width's display mode, then display enable. The
+/// display area the renderer reads out (`Renderer::image`), at the screen's size.
+pub(super) fn start_display(gpu: &mut Gpu, screen: &crate::scene::Screen) -> DisplayArea {
+    gpu.gp1(gp1_display_mode(screen.width));
+    gpu.gp1(GP1_DISPLAY_ON);
+    DisplayArea {
+        x: 0,
+        y: 0,
+        width: screen.width,
+        height: screen.height,
+        color_24bit: false,
+    }
+}
 
 /// Draw one polygon through the GPU's non-hardware precise path: the same GP0 packet (and
 /// blend-mode word) the ordering table would carry, at sub-pixel positions.
@@ -68,24 +101,6 @@ impl Renderer {
     }
 }
 
-/// Upload halfwords into a `width`-halfword-wide VRAM rectangle at (x, y) with GP0(A0h).
-pub(super) fn upload(gpu: &mut Gpu, x: u16, y: u16, width: usize, halfwords: &[u16]) {
-    if width == 0 || halfwords.is_empty() {
-        return;
-    }
-    let height = halfwords.len() / width;
-    gpu.gp0_words(&[
-        0xA000_0000,
-        (y as u32) << 16 | x as u32,
-        (height as u32) << 16 | width as u32,
-    ]);
-    for pair in halfwords.chunks(2) {
-        let lo = pair[0] as u32;
-        let hi = pair.get(1).copied().unwrap_or(0) as u32;
-        gpu.gp0(hi << 16 | lo);
-    }
-}
-
 /// The GP0 words that start a frame in the back buffer at line `buffer_y`: draw mode,
 /// texture window, drawing area, offset, mask, and a fill with the background colour.
 pub(super) fn frame_environment(
@@ -111,4 +126,33 @@ pub(super) fn frame_environment(
 /// GP1(05h): display the buffer at line `buffer_y`.
 pub(super) fn display_word(buffer_y: u32) -> u32 {
     0x0500_0000 | buffer_y << 10
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The display mode selects each width through GP1(08h) bits 0-1 and 6, which GPUSTAT
+    /// mirrors in bits 17-18 and 16 (docs/hardware/timing.md §7).
+    #[test]
+    fn display_mode_selects_each_width() {
+        for (width, bits_17_18, bit_16) in [
+            (256, 0, 0),
+            (320, 1, 0),
+            (512, 2, 0),
+            (640, 3, 0),
+            (368, 0, 1),
+        ] {
+            let mut gpu = Gpu::new();
+            gpu.gp1(gp1_display_mode(width));
+            let stat = gpu.gpustat();
+            assert_eq!(
+                (stat >> 17 & 3, stat >> 16 & 1),
+                (bits_17_18, bit_16),
+                "{width}"
+            );
+            // 240 lines (bit 19), NTSC (20), 15-bit (21), no interlace (22).
+            assert_eq!(stat >> 19 & 0xF, 0, "{width}");
+        }
+    }
 }

@@ -6,14 +6,14 @@
 
 use super::clip::{Verdict, classify};
 use super::lighting::{LitNormal, light, light_shared};
-use super::object::{angle, object_transform};
+use super::object::{object_light, object_transform};
 use super::polygon::{ProjectedFace, rgb_word};
 use super::precise::subpixel_vertices;
 use super::projection::{project_shared, transform, transform_shared};
 use super::trace::{FaceFate, FaceRecord};
 use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
-use crate::scene::prepared::{PreparedFace, to_fixed};
-use gte::typed::{Geometry, I8F8, I8F24, I16F16, Matrix, Projection};
+use crate::scene::prepared::PreparedFace;
+use gte::typed::{Geometry, I8F8, I8F24, I16F16, Projection};
 
 /// Whether a polygon is split again rather than drawn, given its verdict.
 fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
@@ -101,35 +101,15 @@ impl Renderer {
         for (object_index, (object, prepared)) in
             scene.objects.iter().zip(&self.objects).enumerate()
         {
-            let r = object.rotation_at(frame);
-            let rot = Matrix::rotation(angle(r[0]), angle(r[1]), angle(r[2]));
             let (rt, tr) = object_transform(scene, object, frame);
             g.set_rotation(&rt);
             g.set_translation(tr);
-            if let Some(light) = &scene.light {
-                // LLM row = -(light direction) in object space: (R^T (-d))^T.
-                let d = light.direction;
-                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt().max(1e-9);
-                let to_light = [-d[0] / len, -d[1] / len, -d[2] / len];
-                let rb = rot.to_bits();
-                let obj: [f64; 3] = std::array::from_fn(|c| {
-                    (0..3).map(|r| rb[r][c] as f64 * to_light[r]).sum::<f64>() / 4096.0
-                });
-                let zero = [0i16; 3];
-                g.set_light_matrix(&Matrix::from_bits([obj.map(to_fixed), zero, zero]));
-                let col = light.color.map(|c| to_fixed(c as f64 / 255.0));
-                g.set_light_colors(&Matrix::from_bits([
-                    [col[0], 0, 0],
-                    [col[1], 0, 0],
-                    [col[2], 0, 0],
-                ]));
-                g.set_background_color(light.ambient.map(|c| (c as i32 * 4096) / 255));
+            if let Some(light) = object_light(scene, object, frame) {
+                g.set_light_matrix(&light.directions);
+                g.set_light_colors(&light.colors);
+                g.set_background_color(light.background);
             }
-            let blend = object.blend;
-            let texture = prepared.texture.map(|(p, depth)| {
-                let blend = gpu::BlendMode::from_bits(u32::from(blend.unwrap_or(0)));
-                (p.clut_attr().bits(), p.texpage(depth, blend).bits())
-            });
+            let (texture, blend) = (prepared.texture, prepared.blend);
             if share {
                 project_shared(g, &prepared.mesh.vertices, shared);
                 lit_normals.clear();

@@ -23,6 +23,7 @@ pub mod tessellate;
 #[cfg(test)]
 mod tests;
 mod trace;
+mod upload;
 pub mod vram_alloc;
 
 pub use object::{angle, object_transform};
@@ -32,12 +33,10 @@ pub use stats::{FrameStats, cap_message};
 pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
 
 use crate::scene::animation::Animation;
-use crate::scene::prepared::prepare;
 use crate::scene::{Camera, InvalidScene, Scene};
-use gpu::TextureDepth;
 use gpu::{DisplayArea, Gpu};
 use gpu::{OrderingTable, OtError};
-use gpu_stage::upload;
+use gpu_stage::GP1_RESET;
 use gte::typed::Geometry;
 use lighting::LitNormal;
 use object::PreparedObject;
@@ -46,8 +45,8 @@ use precise::SubpixelVertex;
 use projection::SharedProjection;
 use std::fmt;
 use std::time::Instant;
-use tessellate::{MAX_LEVEL, SplitStack};
-use vram_alloc::{VramAllocError, VramAllocator};
+use tessellate::SplitStack;
+use vram_alloc::VramAllocError;
 
 /// Why a renderer could not be built.
 #[derive(Debug)]
@@ -133,109 +132,35 @@ pub struct Renderer {
 }
 
 impl Renderer {
-    /// Prepare a scene: tessellate meshes, place and upload textures (GP0 A0h), set up the
-    /// GPU's display.
+    /// Prepare a scene: check it, place and upload its textures (GP0 A0h), prepare its
+    /// objects (meshes in GTE units, tessellation, texture attributes), size the polygon
+    /// list and the ordering table, and turn the GPU's display on.
     pub fn new(scene: Scene, options: PipelineOptions) -> Result<Renderer, RenderError> {
         options.check().map_err(RenderError::Unsupported)?;
         scene.validate().map_err(RenderError::Scene)?;
-        let (width, height) = (scene.screen.width, scene.screen.height);
         let mut gpu = Gpu::new();
-        gpu.gp1(0x0000_0000);
-        let widest_clut = scene
-            .textures
-            .iter()
-            .map(|t| t.texture.clut.len())
-            .max()
-            .unwrap_or(0);
-        let mut alloc = VramAllocator::new(width, height, widest_clut);
-        let mut placements = Vec::new();
-        for (index, t) in scene.textures.iter().enumerate() {
-            let p = alloc
-                .place(&t.name, &t.texture)
-                .map_err(RenderError::Vram)?;
-            // A textured polygon blends only the texels with bit 15 set (docs/hardware/gpu.md §1): a texture
-            // worn by a semi-transparent material gets bit 15 on every texel colour except
-            // transparent 0000h.
-            let blended = scene
-                .objects
-                .iter()
-                .any(|o| o.texture == Some(index) && o.blend.is_some());
-            let mark = |c: u16| if blended && c != 0 { c | 0x8000 } else { c };
-            let (texels, clut) = match t.texture.depth {
-                TextureDepth::Direct15 => {
-                    let texels: Vec<u16> = t.texture.halfwords().into_iter().map(mark).collect();
-                    (texels, Vec::new())
-                }
-                _ => {
-                    let clut: Vec<u16> = t.texture.clut.iter().map(|&c| mark(c)).collect();
-                    (t.texture.halfwords(), clut)
-                }
-            };
-            upload(
-                &mut gpu,
-                p.page_x,
-                p.page_y,
-                t.texture.row_halfwords(),
-                &texels,
-            );
-            if let Some((x, y)) = p.clut {
-                upload(&mut gpu, x, y, clut.len(), &clut);
-            }
-            placements.push(p);
-        }
-        let mut objects = Vec::new();
-        let mut capacity = 0;
-        for (i, o) in scene.objects.iter().enumerate() {
-            let level = options
-                .tessellation
-                .unwrap_or(o.tessellation)
-                .min(MAX_LEVEL);
-            let mesh = prepare(&scene, i);
-            capacity = mesh
-                .faces
-                .len()
-                .saturating_mul(1 << (2 * level))
-                .saturating_add(capacity)
-                .min(MAX_POLYGONS);
-            let texture = o.texture.and_then(|t| {
-                let depth = scene.textures.get(t)?.texture.depth;
-                Some((*placements.get(t)?, depth))
-            });
-            objects.push(PreparedObject {
-                mesh,
-                level,
-                texture,
-            });
-        }
-        // GP1: display mode for the width, 240 lines, display on.
-        let mode = match width {
-            256 => 0,
-            320 => 1,
-            512 => 2,
-            640 => 3,
-            _ => 0x40,
-        };
-        gpu.gp1(0x0800_0000 | mode);
-        gpu.gp1(0x0300_0000);
-        let display = DisplayArea {
-            x: 0,
-            y: 0,
-            width,
-            height,
-            color_24bit: false,
-        };
+        gpu.gp1(GP1_RESET);
+        let placements = upload::upload_textures(&mut gpu, &scene).map_err(RenderError::Vram)?;
+        let objects: Vec<PreparedObject> = (0..scene.objects.len())
+            .filter_map(|i| PreparedObject::new(&scene, i, &placements, options.tessellation))
+            .collect();
+        let capacity = objects.iter().fold(0, |sum: usize, o| {
+            sum.saturating_add(o.most_polygons()).min(MAX_POLYGONS)
+        });
+        let ot = OrderingTable::new(OT_DEPTH, ot_stage::primitive_words(capacity))
+            .map_err(RenderError::OrderingTable)?;
+        let display = gpu_stage::start_display(&mut gpu, &scene.screen);
+        let mut geometry = Geometry::new();
+        geometry
+            .set_divide_mode(options.divide_mode)
+            .map_err(|e| RenderError::Unsupported(UnsupportedKnob::Divide(e.0)))?;
         let most_vertices = objects
             .iter()
             .map(|o| o.mesh.vertices.len())
             .max()
             .unwrap_or(0);
-        let mut geometry = Geometry::new();
-        geometry
-            .set_divide_mode(options.divide_mode)
-            .map_err(|e| RenderError::Unsupported(UnsupportedKnob::Divide(e.0)))?;
         Ok(Renderer {
-            ot: OrderingTable::new(OT_DEPTH, capacity * 13 + 64)
-                .map_err(RenderError::OrderingTable)?,
+            ot,
             scratch: Vec::with_capacity(capacity),
             stack: SplitStack::default(),
             capacity,

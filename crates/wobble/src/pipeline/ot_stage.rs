@@ -13,6 +13,13 @@ pub const OT_SHIFT: u32 = 3;
 /// words a polygon, 6.8 MB, inside the console's 8 MB address range the OT links can reach).
 pub const MAX_POLYGONS: usize = 1 << 17;
 
+/// The primitive buffer for `polygons` polygons: each takes at most 13 words, a GT4 packet
+/// (12 words) and its node header, or an untextured polygon's packet (at most 8 words) and
+/// its draw-mode word, each with a header; and 64 words to spare.
+pub(super) fn primitive_words(polygons: usize) -> usize {
+    polygons.saturating_mul(13).saturating_add(64)
+}
+
 impl Renderer {
     pub(super) fn ot_stage(&mut self, stats: &mut FrameStats) {
         let dither = self.options.dither.unwrap_or(self.scene.screen.dither);
