@@ -292,7 +292,9 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             .map_err(|e| e.to_string())?;
         let stats = match &inspect_dir {
             Some(dir) if frame + 1 == frames => {
-                let (stats, trace) = renderer.render_frame_traced(frame)?;
+                let (stats, trace) = renderer
+                    .render_frame_traced(frame)
+                    .map_err(|e| e.to_string())?;
                 let title = format!("frame {frame}");
                 let writing = Instant::now();
                 inspect_summary = Some(wobble::inspect::write_frame_report(

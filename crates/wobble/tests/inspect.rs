@@ -339,8 +339,11 @@ fn a_million_commands_stay_usable() {
 
 #[test]
 fn rendered_frame_traces_faces_to_packets() {
-    use wobble::pipeline::{FaceFate, PipelineOptions, Renderer};
-    let scene = wobble::scene::Scene::default_scene();
+    use wobble::pipeline::{FaceFate, PacketOrigin, PipelineOptions, Renderer};
+    // The sphere made semi-transparent: untextured, each of its polygons takes a
+    // blend-mode word.
+    let mut scene = wobble::scene::Scene::default_scene();
+    scene.objects[wobble::scene::default::SPHERE].blend = Some(1);
     let mut renderer = Renderer::new(scene, PipelineOptions::default()).unwrap();
     renderer.render_frame(0);
     let (stats, trace) = renderer.render_frame_traced(1).unwrap();
@@ -357,12 +360,41 @@ fn rendered_frame_traces_faces_to_packets() {
         stats.dropped
     );
     assert_eq!(count(&|f| !matches!(f, FaceFate::Split)), stats.polygons);
-    // Every drawn face has exactly one packet, at its OT slot order.
+    // Every drawn face has exactly one packet.
     for (i, r) in trace.faces.iter().enumerate() {
-        let packets = trace.packets.iter().filter(|(_, f)| *f == Some(i)).count();
+        let packets = trace
+            .packets
+            .iter()
+            .filter(|p| p.origin == Some(PacketOrigin::Face(i)))
+            .count();
         let drawn = matches!(r.fate, FaceFate::Drawn { .. });
         assert_eq!(packets, usize::from(drawn), "face record {i}");
     }
+    // The frame's set-up comes first (E1h-E6h and the fill), then the ordering table's
+    // packets, each blend-mode word just before the polygon it is for.
+    let (setup, table) = trace.packets.split_at(7);
+    assert!(
+        setup
+            .iter()
+            .all(|p| p.origin == Some(PacketOrigin::Environment))
+    );
+    let mut blend_words = 0;
+    for (k, p) in table.iter().enumerate() {
+        match p.origin {
+            Some(PacketOrigin::Face(_)) => {}
+            Some(PacketOrigin::BlendMode(f)) => {
+                blend_words += 1;
+                assert_eq!(p.words.len(), 1);
+                assert_eq!(p.words[0] >> 24, 0xE1);
+                let next = table.get(k + 1).and_then(|n| n.origin);
+                assert_eq!(next, Some(PacketOrigin::Face(f)), "packet {k}");
+                let object = trace.faces[f].object;
+                assert_eq!(object, wobble::scene::default::SPHERE);
+            }
+            other => panic!("packet {k} of the table: {other:?}"),
+        }
+    }
+    assert!(blend_words > 0, "no blend-mode word");
     // Replaying the traced packets on the GPU as it was reproduces the frame.
     let dir = out_dir("frame");
     let s = wobble::inspect::write_frame_report(

@@ -2,7 +2,7 @@
 //! to the object and mesh face it draws, with a table of what happened to every face.
 
 use super::{InspectOptions, InspectSummary, Origin, write_report};
-use crate::pipeline::{DropCause, FaceFate, FaceRecord, FrameTrace};
+use crate::pipeline::{DropCause, FaceFate, FaceRecord, FrameTrace, PacketOrigin};
 use crate::scene::Scene;
 use gpu::command_stream::{Port, StreamCommand};
 use std::collections::HashMap;
@@ -43,15 +43,16 @@ pub fn write_frame_report(
     let mut commands = Vec::with_capacity(trace.packets.len() + 1);
     let mut origins = HashMap::new();
     let mut line_of_face = HashMap::new();
-    for (i, (words, face)) in trace.packets.iter().enumerate() {
+    for (i, packet) in trace.packets.iter().enumerate() {
         let line = i + 1;
         commands.push(StreamCommand {
             line,
             port: Port::Gp0,
-            words: words.clone(),
+            words: packet.words.clone(),
         });
-        let text = match face.and_then(|f| trace.faces.get(f).map(|r| (f, r))) {
-            Some((f, r)) => {
+        let face = |f: usize| trace.faces.get(f).map(|r| (f, r));
+        let text = match packet.origin {
+            Some(PacketOrigin::Face(f)) if let Some((f, r)) = face(f) => {
                 line_of_face.insert(f, line);
                 format!(
                     "{}, face {}{}; {}",
@@ -65,8 +66,11 @@ pub fn write_frame_report(
                     fate_text(&r.fate)
                 )
             }
-            None if i < 7 => "frame set-up: drawing environment and background fill".into(),
-            None => "blend-mode E1 for the polygon drawn next".into(),
+            Some(PacketOrigin::Environment) => {
+                "frame set-up: drawing environment and background fill".into()
+            }
+            Some(PacketOrigin::BlendMode(_)) => "blend-mode E1 for the polygon drawn next".into(),
+            Some(PacketOrigin::Face(_)) | None => "a packet of the ordering table".into(),
         };
         origins.insert(line, Origin { text });
     }

@@ -1,13 +1,11 @@
-//! GPU submission: the drawing environment and background fill for the back buffer, the
-//! ordering-table walk into the GPU (or, with the non-hardware knobs, the precise
-//! rasterizer in the same order), the display flip, and texture uploads (GP0 A0h).
+//! GPU submission (docs/pipeline.md step 7): the drawing environment and the background
+//! fill for the back buffer, the ordering-table walk into GP0 (`OrderingTable::walk`, the
+//! DMA2 linked-list walk, docs/hardware/gpu.md §2), the display flip (GP1(05h)); and the
+//! display set-up when the renderer starts (docs/hardware/gpu.md §9).
 
-use super::Renderer;
-#[cfg(feature = "accuracy-knobs")]
-use super::polygon::ProjectedFace;
-#[cfg(feature = "accuracy-knobs")]
-use super::precise::SubpixelVertex;
-use gpu::{DisplayArea, Gpu};
+use super::trace::{FrameRecorder, PacketOrigin};
+use crate::scene::Screen;
+use gpu::{DisplayArea, Gpu, OrderingTable};
 
 /// GP1(00h): reset the GPU.
 pub(super) const GP1_RESET: u32 = 0x0000_0000;
@@ -28,9 +26,14 @@ fn gp1_display_mode(width: u16) -> u32 {
     0x0800_0000 | bits
 }
 
+/// GP1(05h): display the VRAM area starting at line `y`.
+fn gp1_display_start(y: u32) -> u32 {
+    0x0500_0000 | y << 10
+}
+
 /// Turn the display on for `screen`: its width's display mode, then display enable. The
 /// display area the renderer reads out (`Renderer::image`), at the screen's size.
-pub(super) fn start_display(gpu: &mut Gpu, screen: &crate::scene::Screen) -> DisplayArea {
+pub(super) fn start_display(gpu: &mut Gpu, screen: &Screen) -> DisplayArea {
     gpu.gp1(gp1_display_mode(screen.width));
     gpu.gp1(GP1_DISPLAY_ON);
     DisplayArea {
@@ -42,90 +45,102 @@ pub(super) fn start_display(gpu: &mut Gpu, screen: &crate::scene::Screen) -> Dis
     }
 }
 
-/// Draw one polygon through the GPU's non-hardware precise path: the same GP0 packet (and
-/// blend-mode word) the ordering table would carry, at sub-pixel positions.
-#[cfg(feature = "accuracy-knobs")]
-fn draw_precise(
-    gpu: &mut Gpu,
-    f: &ProjectedFace,
-    at: &[SubpixelVertex; 4],
-    dither: bool,
-    perspective: bool,
-) {
-    if let Some(e1) = f.blend_e1(dither) {
-        gpu.gp0(e1);
-    }
-    let mut packet = [0u32; 12];
-    let len = f.packet(&mut packet);
-    let n = if f.quad { 4 } else { 3 };
-    let at = at.map(|v| gpu::precise::PreciseVertex {
-        x: v.x,
-        y: v.y,
-        inv_z: v.inv_z,
-    });
-    // The packet and positions are built together here, so their lengths agree.
-    let _ = gpu.draw_polygon_precise(&packet[..len], &at[..n], perspective);
+/// What starts and ends frame `frame` in its back buffer (the buffers at lines 0 and
+/// `height` alternate): the drawing environment, a fill with the background colour, and the
+/// GP1 word that displays it.
+pub(super) struct FrameEnvironment {
+    /// Draw mode (E1h, with the dither bit), texture window (E2h), drawing area (E3h, E4h),
+    /// drawing offset (E5h), mask (E6h).
+    environment: [u32; 6],
+    /// GP0(02h): fill the back buffer with the background colour.
+    fill: [u32; 3],
+    /// GP1(05h): display the back buffer.
+    display: u32,
 }
 
-impl Renderer {
-    pub(super) fn gpu_stage(&mut self, frame: u32) {
-        let screen = self.scene.screen;
-        let buffer_y = (frame % 2) * screen.height as u32;
-        let dither = self.options.dither.unwrap_or(screen.dither);
-        let gpu = &mut self.gpu;
-        gpu.gp0_words(&frame_environment(&screen, buffer_y, dither));
-        // Bad links cannot occur in a table this renderer built; a walk error leaves the
-        // frame partly drawn rather than stopping the renderer.
-        if self.options.precise() {
-            #[cfg(feature = "accuracy-knobs")]
-            {
-                let (scratch, at, perspective) = (
-                    &self.scratch,
-                    &self.precise_vertices,
-                    self.options.perspective_uv,
-                );
-                let _ = self.ot.walk(|words| {
-                    let i = words.first().map_or(usize::MAX, |&i| i as usize);
-                    if let (Some(f), Some(at)) = (scratch.get(i), at.get(i)) {
-                        draw_precise(gpu, f, at, dither, perspective);
-                    }
-                });
-            }
-        } else {
-            let _ = self.ot.walk_into(gpu);
+impl FrameEnvironment {
+    pub(super) fn new(screen: &Screen, frame: u32, dither: bool) -> Self {
+        let buffer_y = (frame % 2) * u32::from(screen.height);
+        let (w, h) = (u32::from(screen.width), u32::from(screen.height));
+        let [r, g, b] = screen.background.map(u32::from);
+        Self {
+            environment: [
+                0xE100_0000 | (dither as u32) << 9,
+                0xE200_0000,
+                0xE300_0000 | buffer_y << 10,
+                0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
+                0xE500_0000 | (buffer_y & 0x7FF) << 11,
+                0xE600_0000,
+            ],
+            fill: [
+                0x0200_0000 | r | g << 8 | b << 16,
+                buffer_y << 16,
+                h << 16 | w,
+            ],
+            display: gp1_display_start(buffer_y),
         }
-        gpu.gp1(display_word(buffer_y));
-        self.display = gpu.display_area();
-        self.display.width = screen.width;
-        self.display.height = screen.height;
+    }
+
+    /// The set-up's GP0 packets in the order they are sent: the environment words, then
+    /// the fill.
+    fn packets(&self) -> impl Iterator<Item = &[u32]> {
+        self.environment
+            .chunks(1)
+            .chain(std::iter::once(&self.fill[..]))
     }
 }
 
-/// The GP0 words that start a frame in the back buffer at line `buffer_y`: draw mode,
-/// texture window, drawing area, offset, mask, and a fill with the background colour.
-pub(super) fn frame_environment(
-    screen: &crate::scene::Screen,
-    buffer_y: u32,
-    dither: bool,
-) -> [u32; 9] {
-    let (w, h) = (screen.width as u32, screen.height as u32);
-    let [r, g, b] = screen.background;
-    [
-        0xE100_0000 | (dither as u32) << 9,
-        0xE200_0000,
-        0xE300_0000 | buffer_y << 10,
-        0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
-        0xE500_0000 | (buffer_y & 0x7FF) << 11,
-        0xE600_0000,
-        0x0200_0000 | r as u32 | (g as u32) << 8 | (b as u32) << 16,
-        buffer_y << 16,
-        h << 16 | w,
-    ]
+/// Start the frame: its drawing environment and background fill into GP0.
+pub(super) fn begin_frame(
+    gpu: &mut Gpu,
+    frame: &FrameEnvironment,
+    mut trace: Option<&mut FrameRecorder>,
+) {
+    for packet in frame.packets() {
+        if let Some(t) = trace.as_deref_mut() {
+            t.sent(packet, PacketOrigin::Environment);
+        }
+        gpu.gp0_words(packet);
+    }
 }
 
-/// GP1(05h): display the buffer at line `buffer_y`.
-pub(super) fn display_word(buffer_y: u32) -> u32 {
-    0x0500_0000 | buffer_y << 10
+/// Walk the ordering table into GP0, far entries first. Bad links cannot occur in a table
+/// the OT stage built; a walk error would leave the frame partly drawn rather than stop
+/// the renderer.
+pub(super) fn walk(gpu: &mut Gpu, ot: &OrderingTable, trace: Option<&mut FrameRecorder>) {
+    match trace {
+        None => {
+            let _ = ot.walk_into(gpu);
+        }
+        Some(t) => {
+            let base = ot.ram().as_ptr() as usize;
+            let _ = ot.walk(|words| {
+                // A packet's words follow its node's header in the table's RAM image.
+                let node = ((words.as_ptr() as usize).saturating_sub(base) / 4).saturating_sub(1);
+                t.walked(node, words);
+                gpu.gp0_words(words);
+            });
+        }
+    }
+}
+
+/// Display the frame just drawn (GP1(05h)): the display area it shows, at the screen's
+/// size.
+pub(super) fn show_frame(
+    gpu: &mut Gpu,
+    frame: &FrameEnvironment,
+    screen: &Screen,
+    trace: Option<&mut FrameRecorder>,
+) -> DisplayArea {
+    if let Some(t) = trace {
+        t.displayed(frame.display);
+    }
+    gpu.gp1(frame.display);
+    DisplayArea {
+        width: screen.width,
+        height: screen.height,
+        ..gpu.display_area()
+    }
 }
 
 #[cfg(test)]

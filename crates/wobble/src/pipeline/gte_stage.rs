@@ -1,19 +1,210 @@
-//! The GTE stage: per object, RT/TR/light/fog set-up and one RTPS per shared vertex; per
-//! mesh face, NCLIP on its vertices' screen positions, the clip verdict, colours (NCCS/NCDS
-//! once per distinct normal, or per fade factor with fog; DPCS) and AVSZ3/AVSZ4 for the
-//! ordering-table index. A face split by tessellation, and every face with sub-pixel
-//! positions, goes through its own RTPT/RTPS, NCLIP and NCCT/NCDT instead.
+//! The GTE stage (docs/pipeline.md steps 1-6 and 8): per object, the GTE set-up (RT, TR,
+//! light, fog) and one RTPS per shared vertex; per mesh face, NCLIP, the clip verdict,
+//! colours and AVSZ3/AVSZ4 for the ordering-table entry, the face split into pieces (each
+//! through its own RTPT/RTPS) while tessellation asks; every polygon drawn is appended to the
+//! stage's output, a list of [`ProjectedFace`]s.
+//!
+//! Why this shape: a frame is GTE work per vertex and per face, so the stage does per
+//! vertex what depends on the vertex alone (RTPS once per shared vertex; NCCS/NCDS once per
+//! distinct normal), carries the clip verdict's extent rather than the polygon through it,
+//! and keeps its buffers from frame to frame; that halved the stage's instructions on the
+//! benchmark's wall (docs/pipeline.md, "Benchmarks"; docs/performance.md, "Pipeline
+//! frames").
 
 use super::clip::{Verdict, classify};
 use super::lighting::{LitNormal, light, light_shared};
-use super::object::{object_light, object_transform};
+use super::object::{PreparedObject, object_light, object_transform};
+use super::options::PipelineOptions;
+use super::ot_stage::{OT_DEPTH, OT_SHIFT};
 use super::polygon::{ProjectedFace, rgb_word};
-use super::precise::subpixel_vertices;
-use super::projection::{project_shared, transform, transform_shared};
-use super::trace::{FaceFate, FaceRecord};
-use super::{FrameStats, OT_DEPTH, OT_SHIFT, Renderer};
+use super::precise::{SubpixelVertex, subpixel_vertices};
+use super::projection::{
+    SharedProjection, Transformed, project_shared, transform, transform_shared,
+};
+use super::stats::FrameStats;
+use super::tessellate::SplitStack;
+use super::trace::{FaceFate, FaceRecord, FrameRecorder};
 use crate::scene::prepared::PreparedFace;
+use crate::scene::{Object, Scene};
 use gte::typed::{Geometry, I8F8, I8F24, I16F16, Projection};
+
+/// What the GTE stage reads for one frame.
+pub(super) struct FrameInput<'a> {
+    pub(super) scene: &'a Scene,
+    /// The scene's objects, prepared.
+    pub(super) objects: &'a [PreparedObject],
+    pub(super) options: &'a PipelineOptions,
+    pub(super) frame: u32,
+    /// Every face through its own RTPT/RTPS (the path split faces take), no vertex shared:
+    /// the reference the shared-vertex path is tested against.
+    pub(super) per_polygon: bool,
+}
+
+/// The buffers the stage works in, kept from frame to frame (cleared, never shrunk).
+#[derive(Debug, Default)]
+pub(super) struct Workspace {
+    /// The current object's vertices after RTPS.
+    pub(super) shared: Vec<SharedProjection>,
+    /// The current object's distinct normals, and their colours once lit.
+    lit: Vec<LitNormal>,
+    /// The pieces of the current face waiting to be examined.
+    stack: SplitStack,
+}
+
+impl Workspace {
+    /// Room for objects of up to `vertices` shared vertices.
+    pub(super) fn with_capacity(vertices: usize) -> Self {
+        Self {
+            shared: Vec::with_capacity(vertices),
+            lit: Vec::with_capacity(vertices),
+            stack: SplitStack::default(),
+        }
+    }
+}
+
+/// The stage's output, in the order the polygons were emitted: each polygon to draw, and
+/// for the precise path its vertices. Kept from frame to frame (cleared, never shrunk).
+#[derive(Debug)]
+pub(super) struct ProjectedFaces {
+    pub(super) faces: Vec<ProjectedFace>,
+    /// One entry per face when the precise path is on, none otherwise.
+    pub(super) precise: Vec<[SubpixelVertex; 4]>,
+    /// The most polygons a frame emits.
+    capacity: usize,
+}
+
+impl ProjectedFaces {
+    /// A list for at most `capacity` polygons a frame.
+    pub(super) fn with_capacity(capacity: usize) -> Self {
+        Self {
+            faces: Vec::with_capacity(capacity),
+            precise: Vec::new(),
+            capacity,
+        }
+    }
+
+    fn is_full(&self) -> bool {
+        self.faces.len() >= self.capacity
+    }
+}
+
+/// What every polygon of the frame is examined with.
+#[derive(Clone, Copy)]
+struct Rules {
+    /// Screen width and height.
+    screen: (i32, i32),
+    /// Split a polygon wider or taller than this (pixels) while its level allows.
+    split_extent: i32,
+    /// (a light, fog).
+    lighting: (bool, bool),
+    /// Sub-pixel positions kept (one RTPS per vertex, no shared vertices).
+    subpixel: bool,
+    /// The precise path's vertices emitted.
+    precise: bool,
+}
+
+/// The object whose polygons are examined.
+struct ObjectPass<'a> {
+    index: usize,
+    prepared: &'a PreparedObject,
+    /// Material colour.
+    color: [u8; 3],
+    /// Mesh faces from their shared vertices' RTPS.
+    share: bool,
+}
+
+/// The stage's state for one frame: the GTE, its buffers, its output, the frame's counts
+/// and the trace, each borrowed from the caller for the frame.
+struct Stage<'a> {
+    g: &'a mut Geometry,
+    work: &'a mut Workspace,
+    out: &'a mut ProjectedFaces,
+    stats: &'a mut FrameStats,
+    trace: Option<&'a mut FrameRecorder>,
+    rules: Rules,
+}
+
+/// Run the GTE stage for a frame: every object's polygons examined, those drawn appended to
+/// `out` (cleared first), each counted in `stats` and, when tracing, recorded.
+pub(super) fn gte_stage(
+    input: &FrameInput<'_>,
+    g: &mut Geometry,
+    work: &mut Workspace,
+    out: &mut ProjectedFaces,
+    stats: &mut FrameStats,
+    trace: Option<&mut FrameRecorder>,
+) {
+    out.faces.clear();
+    out.precise.clear();
+    let scene = input.scene;
+    set_up_frame(g, scene);
+    let share = !input.options.subpixel && !input.per_polygon;
+    let mut stage = Stage {
+        g,
+        work,
+        out,
+        stats,
+        trace,
+        rules: Rules {
+            screen: (
+                i32::from(scene.screen.width),
+                i32::from(scene.screen.height),
+            ),
+            split_extent: i32::from(input.options.split_extent),
+            lighting: (scene.light.is_some(), scene.fog.is_some()),
+            subpixel: input.options.subpixel,
+            precise: input.options.precise(),
+        },
+    };
+    for (index, (object, prepared)) in scene.objects.iter().zip(input.objects).enumerate() {
+        set_up_object(stage.g, scene, object, input.frame);
+        let pass = ObjectPass {
+            index,
+            prepared,
+            color: object.color,
+            share,
+        };
+        stage.object(&pass);
+    }
+}
+
+/// The frame's GTE set-up: the screen centre and H (OFX, OFY, H), and with fog DQA/DQB and
+/// the far colour FC.
+fn set_up_frame(g: &mut Geometry, scene: &Scene) {
+    let cam = &scene.camera;
+    let (w, h) = (
+        i32::from(scene.screen.width),
+        i32::from(scene.screen.height),
+    );
+    let (dqa, dqb) = scene
+        .fog
+        .and_then(|f| f.coefficients(cam.h))
+        .unwrap_or((0, 0));
+    g.set_projection(&Projection {
+        offset_x: I16F16::from_num(w / 2),
+        offset_y: I16F16::from_num(h / 2),
+        h: cam.h,
+        dqa: I8F8::from_bits(dqa),
+        dqb: I8F24::from_bits(dqb),
+        ..Projection::default()
+    });
+    if let Some(fog) = &scene.fog {
+        // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (docs/hardware/gte.md §8).
+        g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
+    }
+}
+
+/// An object's GTE set-up at `frame`: RT and TR, and with a light LLM, LCM and BK.
+fn set_up_object(g: &mut Geometry, scene: &Scene, object: &Object, frame: u32) {
+    let (rt, tr) = object_transform(scene, object, frame);
+    g.set_rotation(&rt);
+    g.set_translation(tr);
+    if let Some(light) = object_light(scene, object, frame) {
+        g.set_light_matrix(&light.directions);
+        g.set_light_colors(&light.colors);
+        g.set_background_color(light.background);
+    }
+}
 
 /// Whether a polygon is split again rather than drawn, given its verdict.
 fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
@@ -24,185 +215,155 @@ fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
     }
 }
 
-/// Counts a polygon that is not drawn; whether it is drawn.
-fn drawn(verdict: Verdict, stats: &mut FrameStats) -> bool {
-    match verdict {
-        Verdict::Drop(_) => stats.dropped += 1,
-        Verdict::Cull => stats.culled += 1,
-        Verdict::Offscreen => stats.offscreen += 1,
-        Verdict::Draw { .. } => return true,
-    }
-    false
-}
-
-/// AVSZ3/AVSZ4 for the ordering-table index, and the polygon as the packet stage takes it.
-fn emit(
-    g: &mut Geometry,
-    face: &PreparedFace,
-    (xy, sz): ([(i16, i16); 4], [u16; 4]),
-    color: [u32; 4],
-    (texture, blend): (Option<(u32, u32)>, Option<u8>),
-    uv: [(u8, u8); 4],
-) -> ProjectedFace {
-    let otz = if face.quad {
+/// AVSZ3/AVSZ4 on a polygon's screen Z, and the ordering-table entry of the result.
+fn ot_entry(g: &mut Geometry, quad: bool, sz: [u16; 4]) -> u16 {
+    let otz = if quad {
         g.average_z4(sz)
     } else {
         g.average_z3([sz[0], sz[1], sz[2]])
     };
-    ProjectedFace {
-        xy,
-        color,
-        uv,
-        quad: face.quad,
-        ot_index: ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16,
-        texture,
-        blend,
-    }
+    ((otz >> OT_SHIFT) as usize).min(OT_DEPTH - 1) as u16
 }
 
-impl Renderer {
-    pub(super) fn gte_stage(&mut self, frame: u32, stats: &mut FrameStats) {
-        self.scratch.clear();
-        let scene = &self.scene;
-        let (w, h) = (scene.screen.width as i32, scene.screen.height as i32);
-        let cam = &scene.camera;
-        let g = &mut self.geometry;
-        let stack = &mut self.stack;
-        let scratch = &mut self.scratch;
-        let precise_vertices = &mut self.precise_vertices;
-        precise_vertices.clear();
-        let capacity = self.capacity;
-        let split_extent = i32::from(self.options.split_extent);
-        let options = self.options;
-        let lighting = (scene.light.is_some(), scene.fog.is_some());
-        let (dqa, dqb) = scene
-            .fog
-            .and_then(|f| f.coefficients(cam.h))
-            .unwrap_or((0, 0));
-        g.set_projection(&Projection {
-            offset_x: I16F16::from_num(w / 2),
-            offset_y: I16F16::from_num(h / 2),
-            h: cam.h,
-            dqa: I8F8::from_bits(dqa),
-            dqb: I8F24::from_bits(dqb),
-            ..Projection::default()
+impl Stage<'_> {
+    /// All of an object's mesh faces. Its vertices are projected first (one RTPS each), and
+    /// its normals start the frame unlit, when the faces share them.
+    fn object(&mut self, pass: &ObjectPass<'_>) {
+        let mesh = &pass.prepared.mesh;
+        if pass.share {
+            project_shared(self.g, &mesh.vertices, &mut self.work.shared);
+            self.work.lit.clear();
+            self.work
+                .lit
+                .resize(mesh.normals.len(), LitNormal::default());
+        }
+        for (face_index, face) in mesh.faces.iter().enumerate() {
+            self.mesh_face(pass, face_index, face);
+        }
+    }
+
+    /// A mesh face, and depth first the pieces tessellation splits it into: the face itself
+    /// from its shared vertices, the pieces (new vertices) through RTPT/RTPS one at a time,
+    /// from the split stack. Each is recorded in the trace.
+    fn mesh_face(&mut self, pass: &ObjectPass<'_>, face_index: usize, mesh_face: &PreparedFace) {
+        let shared = pass
+            .prepared
+            .mesh
+            .indices
+            .get(face_index)
+            .filter(|_| pass.share);
+        let mut piece;
+        let (mut face, mut level, mut indices) = (mesh_face, 0u8, shared);
+        loop {
+            let fate = self.examine(pass, (face_index, face, level), indices);
+            if let Some(t) = self.trace.as_deref_mut() {
+                t.face(FaceRecord {
+                    object: pass.index,
+                    face: face_index,
+                    level,
+                    fate,
+                });
+            }
+            if fate == FaceFate::Split {
+                self.work.stack.push_split(face, level + 1);
+            }
+            let Some((next, next_level)) = self.work.stack.pop() else {
+                break;
+            };
+            piece = next;
+            (face, level, indices) = (&piece, next_level, None);
+        }
+    }
+
+    /// One polygon through the GTE: RTPT/RTPS (or its shared vertices' results, `indices`)
+    /// and NCLIP, the clip verdict, and either a split, a count of a polygon not drawn, or
+    /// the polygon emitted. Its fate.
+    #[inline(always)]
+    fn examine(
+        &mut self,
+        pass: &ObjectPass<'_>,
+        (face_index, face, level): (usize, &PreparedFace, u8),
+        indices: Option<&[u32; 4]>,
+    ) -> FaceFate {
+        let rules = self.rules;
+        let t = match indices {
+            Some(indices) => transform_shared(self.g, &self.work.shared, indices, face.quad),
+            None => transform(self.g, face, rules.subpixel),
+        };
+        let verdict = classify(t.flag, t.area, t.xy, face.quad, rules.screen);
+        if level < pass.prepared.level && needs_split(&verdict, rules.split_extent) {
+            return FaceFate::Split;
+        }
+        let stats = &mut *self.stats;
+        stats.polygons += 1;
+        match verdict {
+            Verdict::Drop(cause) => {
+                stats.dropped += 1;
+                FaceFate::Dropped(cause)
+            }
+            Verdict::Cull => {
+                stats.culled += 1;
+                FaceFate::Culled
+            }
+            Verdict::Offscreen => {
+                stats.offscreen += 1;
+                FaceFate::Offscreen
+            }
+            Verdict::Draw { .. } if self.out.is_full() => {
+                stats.dropped += 1;
+                FaceFate::Overflow
+            }
+            Verdict::Draw { .. } => FaceFate::Drawn {
+                ot_slot: self.emit(pass, (face_index, face), indices, &t),
+            },
+        }
+    }
+
+    /// A drawn polygon's vertex colours, texels and ordering-table entry, appended to the
+    /// output (with its precise-path vertices when the path is on); the entry.
+    #[inline(always)]
+    fn emit(
+        &mut self,
+        pass: &ObjectPass<'_>,
+        (face_index, face): (usize, &PreparedFace),
+        indices: Option<&[u32; 4]>,
+        t: &Transformed,
+    ) -> u16 {
+        let mesh = &pass.prepared.mesh;
+        let rules = self.rules;
+        let color = match indices {
+            Some(indices) => light_shared(
+                self.g,
+                rules.lighting,
+                &mut self.work.lit,
+                (&mesh.normals, &mesh.normal_of),
+                (indices, face.quad),
+                pass.color,
+                t.ir0,
+            ),
+            None => light(self.g, rules.lighting, face, pass.color, t.ir0).map(rgb_word),
+        };
+        if rules.precise {
+            self.out
+                .precise
+                .push(subpixel_vertices(t.xy, t.sz, t.fine, face.quad));
+        }
+        // A mesh face's texels are rounded once, when the object is prepared.
+        let uv = match indices.and(mesh.texels.get(face_index)) {
+            Some(&uv) => uv,
+            None => face.v.map(|p| p.texel()),
+        };
+        let ot_index = ot_entry(self.g, face.quad, t.sz);
+        self.out.faces.push(ProjectedFace {
+            xy: t.xy,
+            color,
+            uv,
+            quad: face.quad,
+            ot_index,
+            texture: pass.prepared.texture,
+            blend: pass.prepared.blend,
         });
-        if let Some(fog) = &scene.fog {
-            // FC is in colour units of 1/16: a colour C pushes as MAC >> 4 (docs/hardware/gte.md §8).
-            g.set_far_color(fog.color.map(|c| i32::from(c) << 4));
-        }
-        let mut trace = self.trace.as_deref_mut();
-        if let Some(t) = trace.as_deref_mut() {
-            t.clear();
-        }
-        let share = !options.subpixel && !self.per_polygon;
-        let shared = &mut self.shared;
-        let lit_normals = &mut self.lit_normals;
-        for (object_index, (object, prepared)) in
-            scene.objects.iter().zip(&self.objects).enumerate()
-        {
-            let (rt, tr) = object_transform(scene, object, frame);
-            g.set_rotation(&rt);
-            g.set_translation(tr);
-            if let Some(light) = object_light(scene, object, frame) {
-                g.set_light_matrix(&light.directions);
-                g.set_light_colors(&light.colors);
-                g.set_background_color(light.background);
-            }
-            let (texture, blend) = (prepared.texture, prepared.blend);
-            if share {
-                project_shared(g, &prepared.mesh.vertices, shared);
-                lit_normals.clear();
-                lit_normals.resize(prepared.mesh.normals.len(), LitNormal::default());
-            }
-            for (face_index, mesh_face) in prepared.mesh.faces.iter().enumerate() {
-                // The mesh face itself uses its shared vertices; its pieces, new vertices
-                // made by splitting, go through RTPT/RTPS one piece at a time, depth first
-                // from the split stack.
-                let indices = prepared.mesh.indices.get(face_index).filter(|_| share);
-                let mut piece;
-                let (mut face, mut level) = (mesh_face, 0u8);
-                loop {
-                    'examine: {
-                        let indices = indices.filter(|_| level == 0);
-                        let t = match indices {
-                            Some(indices) => transform_shared(g, shared, indices, face.quad),
-                            None => transform(g, face, options.subpixel),
-                        };
-                        let verdict = classify(t.flag, t.area, t.xy, face.quad, (w, h));
-                        let split = level < prepared.level && needs_split(&verdict, split_extent);
-                        if let Some(tr) = trace.as_deref_mut() {
-                            let fate = match verdict {
-                                _ if split => FaceFate::Split,
-                                Verdict::Drop(c) => FaceFate::Dropped(c),
-                                Verdict::Cull => FaceFate::Culled,
-                                Verdict::Offscreen => FaceFate::Offscreen,
-                                Verdict::Draw { .. } if scratch.len() >= capacity => {
-                                    FaceFate::Overflow
-                                }
-                                // The slot is filled in below.
-                                Verdict::Draw { .. } => FaceFate::Drawn { ot_slot: 0 },
-                            };
-                            tr.faces.push(FaceRecord {
-                                object: object_index,
-                                face: face_index,
-                                level,
-                                fate,
-                            });
-                        }
-                        if split {
-                            stack.push_split(face, level + 1);
-                            break 'examine;
-                        }
-                        stats.polygons += 1;
-                        if !drawn(verdict, stats) {
-                            break 'examine;
-                        }
-                        let (xy, sz, ir0) = (t.xy, t.sz, t.ir0);
-                        if scratch.len() >= capacity {
-                            stats.dropped += 1;
-                            break 'examine;
-                        }
-                        let color = match indices {
-                            Some(indices) => light_shared(
-                                g,
-                                lighting,
-                                lit_normals,
-                                (&prepared.mesh.normals, &prepared.mesh.normal_of),
-                                (indices, face.quad),
-                                object.color,
-                                ir0,
-                            ),
-                            None => light(g, lighting, face, object.color, ir0).map(rgb_word),
-                        };
-                        if options.precise() {
-                            precise_vertices.push(subpixel_vertices(xy, sz, t.fine, face.quad));
-                        }
-                        // A mesh face's texels are rounded once, when the object is prepared.
-                        let uv = match indices.and(prepared.mesh.texels.get(face_index)) {
-                            Some(&uv) => uv,
-                            None => face.v.map(|p| p.texel()),
-                        };
-                        let projected = emit(g, face, (xy, sz), color, (texture, blend), uv);
-                        if let Some(tr) = trace.as_deref_mut() {
-                            let record = tr.faces.len().saturating_sub(1);
-                            if let Some(r) = tr.faces.last_mut() {
-                                r.fate = FaceFate::Drawn {
-                                    ot_slot: projected.ot_index,
-                                };
-                            }
-                            tr.scratch_face.push(record);
-                        }
-                        scratch.push(projected);
-                    }
-                    let Some((next, next_level)) = stack.pop() else {
-                        break;
-                    };
-                    piece = next;
-                    (face, level) = (&piece, next_level);
-                }
-            }
-        }
+        ot_index
     }
 }
 
@@ -364,8 +525,7 @@ mod tests {
             let t = transform(&mut g, &face, false);
             let verdict = classify(t.flag, t.area, t.xy, quad, screen);
             let color = light(&mut g, lighting, &face, base, t.ir0).map(rgb_word);
-            let uv = face.v.map(|p| p.texel());
-            let otz = emit(&mut g, &face, (t.xy, t.sz), color, (None, None), uv).ot_index;
+            let otz = ot_entry(&mut g, quad, t.sz);
 
             let mut shared = Vec::new();
             project_shared(&mut g, &vertices, &mut shared);
@@ -384,7 +544,7 @@ mod tests {
                 light_shared(g, lighting, cache, (&normals, &normal_of), (&indices, quad), base, ir0)
             };
             prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
-            prop_assert_eq!(emit(&mut g, &face, (s.xy, s.sz), color, (None, None), uv).ot_index, otz);
+            prop_assert_eq!(ot_entry(&mut g, quad, s.sz), otz);
             // Once more from the lit vertices, then after they were faded by another factor.
             prop_assert_eq!(vertex_color(&mut g, &mut cache, s.ir0), color);
             let other = I4F12::from_bits(other_ir0);

@@ -1,12 +1,16 @@
 //! The PS1 rendering pipeline, using only the console's mechanisms: GTE transforms (RTPT/RTPS,
 //! integer-snapped screen positions), NCLIP back-face culling, whole-polygon clipping,
-//! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth into an ordering table, GP0 packets
-//! in a primitive buffer, the DMA walk into the GPU, and two display buffers.
+//! optional GTE lighting (NCCT/NCCS) and depth cueing (NCDT/NCDS, DPCS), AVSZ3/AVSZ4 depth
+//! into an ordering table, GP0 packets in a primitive buffer, the ordering-table walk into
+//! the GPU, and two display buffers.
 //!
-//! One frame runs the stages in order: `gte_stage` (transform each shared vertex once, then
-//! cull, clip, light and depth per polygon; splitting polygons as `tessellate` and `clip`
-//! decide), `ot_stage` (GP0 packets linked into the ordering table), `gpu_stage` (the OT
-//! walk into the GPU, or the precise path).
+//! A frame is a chain of stages, each a function of what the one before produced: the
+//! scene's objects, prepared once ([`object`], from `scene::prepared`) -> `gte_stage`
+//! (projected polygons, a list of `ProjectedFace`) -> `ot_stage` (their GP0 packets linked
+//! into the ordering table) -> `gpu_stage` (the table walked into GP0, the frame
+//! displayed). The non-hardware precise path takes the projected polygons straight to the
+//! GPU's precise rasterizer in the table's order (`precise`). A traced frame runs the same
+//! stages with a recorder (`trace`).
 
 mod clip;
 mod gpu_stage;
@@ -30,22 +34,20 @@ pub use object::{angle, object_transform};
 pub use options::{DEFAULT_SPLIT_EXTENT, PipelineOptions, UnsupportedKnob};
 pub use ot_stage::{MAX_POLYGONS, OT_DEPTH, OT_SHIFT};
 pub use stats::{FrameStats, cap_message};
-pub use trace::{DropCause, FaceFate, FaceRecord, FrameTrace};
+pub use trace::{
+    DropCause, FaceFate, FaceRecord, FrameTrace, PacketOrigin, TraceError, TracedPacket,
+};
 
 use crate::scene::animation::Animation;
 use crate::scene::{Camera, InvalidScene, Scene};
-use gpu::{DisplayArea, Gpu};
-use gpu::{OrderingTable, OtError};
-use gpu_stage::GP1_RESET;
+use gpu::{DisplayArea, Gpu, OrderingTable, OtError};
+use gpu_stage::{FrameEnvironment, GP1_RESET};
 use gte::typed::Geometry;
-use lighting::LitNormal;
+use gte_stage::{FrameInput, ProjectedFaces, Workspace, gte_stage};
 use object::PreparedObject;
-use polygon::ProjectedFace;
-use precise::SubpixelVertex;
-use projection::SharedProjection;
 use std::fmt;
 use std::time::Instant;
-use tessellate::SplitStack;
+use trace::FrameRecorder;
 use vram_alloc::VramAllocError;
 
 /// Why a renderer could not be built.
@@ -108,26 +110,20 @@ impl std::error::Error for PoseError {
 pub struct Renderer {
     scene: Scene,
     options: PipelineOptions,
+    /// The scene's objects, prepared.
     objects: Vec<PreparedObject>,
-    gpu: Gpu,
-    ot: OrderingTable,
     geometry: Geometry,
-    scratch: Vec<ProjectedFace>,
-    stack: SplitStack,
-    capacity: usize,
+    /// The GTE stage's buffers.
+    work: Workspace,
+    /// The GTE stage's output.
+    faces: ProjectedFaces,
+    /// The ordering table and its primitive buffer.
+    ot: OrderingTable,
+    /// The precise path's drawing order (the table's order, without the table).
+    precise_order: Vec<u32>,
+    gpu: Gpu,
     display: DisplayArea,
-    /// CLUT cache of the precise path (the GPU's own is private to it).
-    /// Sub-pixel positions (without the drawing offset) and 1/SZ of each `scratch` entry,
-    /// filled only when the precise path is on, so the hardware path carries none of it.
-    precise_vertices: Vec<[SubpixelVertex; 4]>,
-    /// Face and packet records of a traced frame; `None` (and untouched) otherwise.
-    trace: Option<Box<trace::TraceSink>>,
-    /// The current object's vertices after RTPS.
-    shared: Vec<SharedProjection>,
-    /// The current object's distinct normals, and their colours once lit.
-    lit_normals: Vec<LitNormal>,
-    /// Every face through its own RTPT/RTPS (the path split faces take), no vertex shared:
-    /// the reference the shared-vertex path is tested against.
+    /// Every face through its own RTPT/RTPS, no vertex shared (the tests' reference).
     per_polygon: bool,
 }
 
@@ -160,20 +156,16 @@ impl Renderer {
             .max()
             .unwrap_or(0);
         Ok(Renderer {
-            ot,
-            scratch: Vec::with_capacity(capacity),
-            stack: SplitStack::default(),
-            capacity,
             scene,
             options,
             objects,
-            gpu,
             geometry,
+            work: Workspace::with_capacity(most_vertices),
+            faces: ProjectedFaces::with_capacity(capacity),
+            ot,
+            precise_order: Vec::new(),
+            gpu,
             display,
-            precise_vertices: Vec::new(),
-            trace: None,
-            shared: Vec::with_capacity(most_vertices),
-            lit_normals: Vec::with_capacity(most_vertices),
             per_polygon: false,
         })
     }
@@ -245,14 +237,74 @@ impl Renderer {
     /// Render frame `frame` (objects at their frame-`frame` rotation) into the back buffer
     /// and display it.
     pub fn render_frame(&mut self, frame: u32) -> FrameStats {
+        self.render(frame, None)
+    }
+
+    /// Render frame `frame` like [`Renderer::render_frame`] and record what happened to
+    /// every polygon and which GP0 packet draws it. The stage times include the tracing.
+    /// Only the hardware path can be traced.
+    pub fn render_frame_traced(
+        &mut self,
+        frame: u32,
+    ) -> Result<(FrameStats, FrameTrace), TraceError> {
+        if self.options.precise() {
+            return Err(TraceError::PrecisePath);
+        }
+        let mut recorder = FrameRecorder::new(&self.gpu);
+        let stats = self.render(frame, Some(&mut recorder));
+        Ok((stats, recorder.finish()))
+    }
+
+    /// The frame's stages in order, each fed what the one before produced.
+    fn render(&mut self, frame: u32, mut trace: Option<&mut FrameRecorder>) -> FrameStats {
         let mut stats = FrameStats::default();
+        let dither = self.options.dither.unwrap_or(self.scene.screen.dither);
         let t0 = Instant::now();
-        self.gte_stage(frame, &mut stats);
-        stats.capped = usize::from(self.scratch.len() >= MAX_POLYGONS);
+        let input = FrameInput {
+            scene: &self.scene,
+            objects: &self.objects,
+            options: &self.options,
+            frame,
+            per_polygon: self.per_polygon,
+        };
+        gte_stage(
+            &input,
+            &mut self.geometry,
+            &mut self.work,
+            &mut self.faces,
+            &mut stats,
+            trace.as_deref_mut(),
+        );
+        stats.capped = usize::from(self.faces.faces.len() >= MAX_POLYGONS);
         let t1 = Instant::now();
-        self.ot_stage(&mut stats);
-        let t2 = Instant::now();
-        self.gpu_stage(frame);
+        let environment = FrameEnvironment::new(&self.scene.screen, frame, dither);
+        let t2 = if self.options.precise() {
+            stats.drawn = precise::depth_order(&self.faces.faces, &mut self.precise_order);
+            let t2 = Instant::now();
+            gpu_stage::begin_frame(&mut self.gpu, &environment, None);
+            #[cfg(feature = "accuracy-knobs")]
+            precise::draw(
+                &mut self.gpu,
+                (&self.faces.faces, &self.faces.precise),
+                &self.precise_order,
+                dither,
+                self.options.perspective_uv,
+            );
+            t2
+        } else {
+            stats.drawn = ot_stage::link(
+                &self.faces.faces,
+                dither,
+                &mut self.ot,
+                trace.as_deref_mut(),
+            );
+            let t2 = Instant::now();
+            gpu_stage::begin_frame(&mut self.gpu, &environment, trace.as_deref_mut());
+            gpu_stage::walk(&mut self.gpu, &self.ot, trace.as_deref_mut());
+            t2
+        };
+        self.display =
+            gpu_stage::show_frame(&mut self.gpu, &environment, &self.scene.screen, trace);
         let t3 = Instant::now();
         stats.gte = t1 - t0;
         stats.ot = t2 - t1;

@@ -183,7 +183,10 @@ fn shared_vertices_feed_the_precise_path() {
                 "{name}, frame {frame}: VRAM differs"
             );
         }
-        assert!(!shared.shared.is_empty(), "{name}: no vertex projected");
+        assert!(
+            !shared.work.shared.is_empty(),
+            "{name}: no vertex projected"
+        );
     }
 }
 
@@ -205,9 +208,12 @@ fn shared_vertices_draw_what_per_polygon_transforms_draw() {
             drawn += a.drawn;
         }
         assert!(drawn > 0, "{name}: nothing drawn");
-        assert!(!shared.shared.is_empty(), "{name}: no vertex projected");
         assert!(
-            reference.shared.is_empty(),
+            !shared.work.shared.is_empty(),
+            "{name}: no vertex projected"
+        );
+        assert!(
+            reference.work.shared.is_empty(),
             "{name}: reference shared a vertex"
         );
     }

@@ -1,11 +1,10 @@
 //! Tracing one frame for the inspector (`wobble render --inspect`): what happened to each
-//! polygon, and which GP0 packet draws it. Off unless [`Renderer::render_frame_traced`]
-//! runs; the normal path only tests an empty `Option`.
+//! polygon, and which GP0 packet draws it. The stages take an optional recorder
+//! ([`FrameRecorder`]) and run the same way with or without it; without it, they only test
+//! an empty `Option`.
 
-use super::gpu_stage::{display_word, frame_environment};
-use super::{FrameStats, MAX_POLYGONS, Renderer};
 use gpu::Gpu;
-use std::time::Instant;
+use std::fmt;
 
 /// Why the GTE stage discards a polygon whole.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -51,90 +50,146 @@ pub struct FaceRecord {
     pub fate: FaceFate,
 }
 
-/// A traced frame: the faces' fates and the GPU stage's GP0 packets, each tagged with the
-/// face it draws.
+/// Which stage put a packet into the frame, and for which polygon.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PacketOrigin {
+    /// The frame's set-up in the back buffer: a drawing-environment word (E1h-E6h) or the
+    /// fill with the background colour.
+    Environment,
+    /// The polygon of this face record (an index into [`FrameTrace::faces`]).
+    Face(usize),
+    /// The draw-mode word (E1h) carrying the blend mode of the polygon of this face record,
+    /// which comes next (an untextured polygon has no texpage attribute to carry it).
+    BlendMode(usize),
+}
+
+/// One GP0 packet of a traced frame.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TracedPacket {
+    /// Its words.
+    pub words: Vec<u32>,
+    /// Where it comes from; `None` for a packet the frame's stages did not link (none is).
+    pub origin: Option<PacketOrigin>,
+}
+
+/// A traced frame: the faces' fates and the GPU stage's GP0 packets, each tagged with where
+/// it comes from.
 #[derive(Clone, Debug)]
 pub struct FrameTrace {
-    /// The GPU before the GPU stage (textures and the previous frame in VRAM).
+    /// The GPU before the frame (textures and the previous frame in VRAM).
     pub gpu_before: Gpu,
     /// Every polygon examined, in pipeline order.
     pub faces: Vec<FaceRecord>,
     /// The GP0 packets in the order the GPU received them (environment and background
-    /// fill, then the OT walk), each with the index into `faces` of the polygon it draws.
-    pub packets: Vec<(Vec<u32>, Option<usize>)>,
+    /// fill, then the OT walk).
+    pub packets: Vec<TracedPacket>,
     /// The GP1 word that displays the frame.
     pub display_word: u32,
 }
 
-/// Per-frame records, kept only while tracing.
-#[derive(Clone, Debug, Default)]
-pub(super) struct TraceSink {
-    pub(super) faces: Vec<FaceRecord>,
-    /// Face record of each `scratch` entry.
-    pub(super) scratch_face: Vec<usize>,
-    /// (OT node index, face record) of each linked packet.
-    pub(super) node_face: Vec<(usize, usize)>,
+/// Why a frame cannot be traced.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TraceError {
+    /// The precise path draws outside GP0, so its packets cannot be replayed.
+    PrecisePath,
 }
 
-impl TraceSink {
-    pub(super) fn clear(&mut self) {
-        self.faces.clear();
-        self.scratch_face.clear();
-        self.node_face.clear();
+impl fmt::Display for TraceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TraceError::PrecisePath => write!(
+                f,
+                "tracing needs the hardware path: drop --subpixel / --perspective-uv"
+            ),
+        }
     }
 }
 
-impl Renderer {
-    /// Render frame `frame` like [`Renderer::render_frame`] and record what happened to
-    /// every polygon and which GP0 packet draws it. The stage times include the tracing.
-    /// Only the hardware path can be traced.
-    pub fn render_frame_traced(&mut self, frame: u32) -> Result<(FrameStats, FrameTrace), String> {
-        if self.options.precise() {
-            return Err(
-                "tracing needs the hardware path: drop --subpixel / --perspective-uv".into(),
-            );
+impl std::error::Error for TraceError {}
+
+/// Records one frame as its stages run: each polygon's fate (GTE stage), the node and
+/// origin of each linked packet (OT stage), then the packets as the GPU receives them (GPU
+/// stage).
+#[derive(Debug)]
+pub(super) struct FrameRecorder {
+    gpu_before: Gpu,
+    faces: Vec<FaceRecord>,
+    /// The face record of each polygon the GTE stage emitted, in its order.
+    emitted: Vec<usize>,
+    /// (OT node index, origin) of each linked packet, in the order linked, which is the
+    /// nodes' order in the primitive buffer.
+    nodes: Vec<(usize, PacketOrigin)>,
+    packets: Vec<TracedPacket>,
+    display_word: u32,
+}
+
+impl FrameRecorder {
+    /// A recorder for a frame drawn on `gpu` as it is now.
+    pub(super) fn new(gpu: &Gpu) -> Self {
+        Self {
+            gpu_before: gpu.clone(),
+            faces: Vec::new(),
+            emitted: Vec::new(),
+            nodes: Vec::new(),
+            packets: Vec::new(),
+            display_word: 0,
         }
-        self.trace = Some(Box::default());
-        let mut stats = FrameStats::default();
-        let t0 = Instant::now();
-        self.gte_stage(frame, &mut stats);
-        stats.capped = usize::from(self.scratch.len() >= MAX_POLYGONS);
-        let t1 = Instant::now();
-        self.ot_stage(&mut stats);
-        let t2 = Instant::now();
-        let sink = self.trace.take().unwrap_or_default();
-        let gpu_before = self.gpu.clone();
-        let screen = self.scene.screen;
-        let buffer_y = (frame % 2) * screen.height as u32;
-        let dither = self.options.dither.unwrap_or(screen.dither);
-        let env = frame_environment(&screen, buffer_y, dither);
-        let mut packets: Vec<(Vec<u32>, Option<usize>)> = Vec::new();
-        for w in &env[..6] {
-            packets.push((vec![*w], None));
+    }
+
+    /// The GTE stage examined a polygon; a drawn one was emitted, after those before it.
+    pub(super) fn face(&mut self, record: FaceRecord) {
+        if matches!(record.fate, FaceFate::Drawn { .. }) {
+            self.emitted.push(self.faces.len());
         }
-        packets.push((env[6..].to_vec(), None));
-        let base = self.ot.ram().as_ptr() as usize;
-        let _ = self.ot.walk(|words| {
-            // A packet's words follow its node header in the table's RAM image.
-            let node = ((words.as_ptr() as usize).saturating_sub(base) / 4).saturating_sub(1);
-            let face = sink
-                .node_face
-                .iter()
-                .find(|(n, _)| *n == node)
-                .map(|&(_, f)| f);
-            packets.push((words.to_vec(), face));
+        self.faces.push(record);
+    }
+
+    /// The OT stage links a packet at node `node` for emitted polygon `polygon`: the
+    /// polygon itself, or (`blend_mode`) the draw-mode word before it.
+    pub(super) fn linked(&mut self, node: usize, polygon: usize, blend_mode: bool) {
+        if let Some(&record) = self.emitted.get(polygon) {
+            let origin = if blend_mode {
+                PacketOrigin::BlendMode(record)
+            } else {
+                PacketOrigin::Face(record)
+            };
+            self.nodes.push((node, origin));
+        }
+    }
+
+    /// The GPU stage sends a packet of its own (`Environment`).
+    pub(super) fn sent(&mut self, words: &[u32], origin: PacketOrigin) {
+        self.packets.push(TracedPacket {
+            words: words.to_vec(),
+            origin: Some(origin),
         });
-        let t3 = Instant::now();
-        self.gpu_stage(frame);
-        stats.gte = t1 - t0;
-        stats.ot = t2 - t1;
-        stats.gpu = Instant::now() - t3;
-        let trace = FrameTrace {
-            gpu_before,
-            faces: sink.faces,
-            packets,
-            display_word: display_word(buffer_y),
-        };
-        Ok((stats, trace))
+    }
+
+    /// The OT walk hands the GPU the packet of node `node`.
+    pub(super) fn walked(&mut self, node: usize, words: &[u32]) {
+        let origin = self
+            .nodes
+            .binary_search_by_key(&node, |&(n, _)| n)
+            .ok()
+            .and_then(|i| self.nodes.get(i))
+            .map(|&(_, origin)| origin);
+        self.packets.push(TracedPacket {
+            words: words.to_vec(),
+            origin,
+        });
+    }
+
+    /// The GPU stage displays the frame with GP1 word `word`.
+    pub(super) fn displayed(&mut self, word: u32) {
+        self.display_word = word;
+    }
+
+    pub(super) fn finish(self) -> FrameTrace {
+        FrameTrace {
+            gpu_before: self.gpu_before,
+            faces: self.faces,
+            packets: self.packets,
+            display_word: self.display_word,
+        }
     }
 }
