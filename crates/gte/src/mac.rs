@@ -1,5 +1,12 @@
 //! The arithmetic every command shares: 44-bit MAC1-3 accumulation with per-step overflow
 //! flags and wrap, MAC0 flags, and the IR / colour saturation (docs/hardware/gte.md §4).
+//!
+//! Why this shape: this is every command's FLAG and saturation work, and on an emulator's
+//! inputs most of those tests never fire. Values that seldom leave their range are tested
+//! together (`all_within`: one compare for a group) or one by one with the saturation out of
+//! line (`ir_test`); values that often do keep in-line clamps. The form of each step was
+//! measured per command, and selects or one unsigned compare per clamp measured slower
+//! (docs/performance.md, "Saturation tests", "Straight paths and tests folded into others").
 
 use crate::Gte;
 

@@ -1,5 +1,13 @@
 //! The GTE register file: 32 data registers (MTC2/MFC2) and 32 control registers
 //! (CTC2/CFC2), with every read/write quirk of docs/hardware/gte.md §2.
+//!
+//! Why this shape: an emulator writes a command's inputs with MTC2 just before the command
+//! reads them, and a load narrower than the store it reads from waits about seven cycles
+//! instead of two (docs/performance.md, "Store forwarding"). So each register is a 4-byte
+//! word, the registers commands read right after such writes (VZ for RTPS/RTPT, IR, SZ, RGBC)
+//! are loaded whole through `Words::whole` (AVSZ3 7.42 → 6.45 ns), and MTC2/MFC2 of the
+//! registers with side effects are out of line, so that a plain write falls through to its
+//! store ("Straight paths and tests folded into others").
 
 use crate::flag::Flag;
 

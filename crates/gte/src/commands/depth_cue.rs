@@ -1,4 +1,10 @@
 //! Depth-cue and interpolation commands: DPCS, DPCT, DCPL, INTPL, GPF, GPL (docs/hardware/gte.md §8).
+//!
+//! Why this shape: DPCS, DPCT, DCPL and INTPL test each IR alone with the saturation out of
+//! the straight path (`ir_test::EACH_RARE`), which measured faster than the grouped test
+//! though it runs more instructions (docs/performance.md, "Saturation tests", "Straight paths
+//! and tests folded into others"); GPF and GPL keep their clamps in line, as IR * IR0 leaves
+//! IR's range on a large share of calls (GPF 7.9 → 9.1 ns with the out-of-line form).
 
 use crate::Gte;
 use crate::mac::{Step, ir_test, is_plain_start, step_with};

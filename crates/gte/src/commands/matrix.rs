@@ -1,5 +1,11 @@
 //! Matrix-vector commands: MVMVA (with the FC and mx=3 hardware bugs), SQR and OP
 //! (docs/hardware/gte.md §8).
+//!
+//! Why this shape: MVMVA reads its operands at offsets from its selector fields rather than
+//! dispatching on each (327 → 319 instructions a call, docs/performance.md, "Where the
+//! per-call time went"), and its step's three rows are written out (`row_sums`): left as a
+//! `core::array::from_fn` call, its nine products went through the stack (17.62 → 12.54 ns,
+//! "The timed loop").
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};

@@ -1,4 +1,12 @@
 //! RTPS/RTPT: rotate, translate and perspective-project vertices (docs/hardware/gte.md §5).
+//!
+//! Why this shape: RTPS's time is the chain from VZ0 through SZ3 and the divide to SXY2, IR0
+//! and FLAG (docs/performance.md, "Rows under 2x on Zen 4"). VZ is loaded as a whole word (a
+//! narrower load of a word just written waits about five cycles longer, "Store forwarding"),
+//! one copy per sf and lm makes IR's range a constant (7 fewer instructions a call, "The timed
+//! loop"), and the tests that seldom fire (IR1-3 with SZ3, SX2 with SY2, the screen values'
+//! MAC0 only when SX2/SY2 saturate) stay off the straight path ("Straight paths and tests
+//! folded into others").
 
 #[cfg(feature = "divide-modes")]
 use crate::DivideMode;

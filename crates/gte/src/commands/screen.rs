@@ -1,5 +1,10 @@
 //! Screen-space commands: NCLIP (winding of SXY0-2) and AVSZ3/AVSZ4 (ordering-table depth)
 //! (docs/hardware/gte.md §7).
+//!
+//! Why this shape: NCLIP and AVSZ3 cost little more than their register traffic (docs/
+//! performance.md, "The floor"): NCLIP reads SXY0-2 as whole words (12 → 5.4 ns, "Store
+//! forwarding"), and AVSZ3/AVSZ4 test OTZ's saturation on a cold branch and MAC0 only when OTZ
+//! saturates ("Saturation tests", "Straight paths and tests folded into others").
 
 use crate::Gte;
 use crate::mac::bit;

@@ -2,6 +2,11 @@
 //! near the camera, a saturated screen position, a size the GPU would refuse), culled as a
 //! back face, off screen, or drawn; no polygon is cut at the screen edge (the GPU clips
 //! pixels to the drawing area).
+//!
+//! Why this shape: the verdict carries only the polygon's extent, its positions, screen Z and
+//! IR0 staying with the projection rather than being copied through it (128 K fewer
+//! instructions per wall frame, docs/performance.md, "Pipeline frames"), and each triangle's
+//! bounding box is taken once (docs/pipeline.md, "Benchmarks").
 
 use gte::Flag;
 

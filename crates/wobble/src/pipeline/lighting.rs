@@ -1,6 +1,12 @@
 //! Vertex colours (docs/pipeline.md step 5): NCCT/NCCS with a light, NCDT/NCDS with light
 //! and fog, DPCS with fog only; on a mesh face's shared vertices, once per distinct normal
 //! (and fade factor) a frame.
+//!
+//! Why this shape: NCCS/NCDS depend on a vertex through its normal alone, so a normal is lit
+//! once a frame (the benchmark wall's 1,600 vertices share one normal: one NCDS a frame
+//! instead of 1,600; docs/pipeline.md, "Benchmarks"); colours leave as GP0 colour words, and
+//! `light_shared` is always inlined into the stage, where as a call it cost about 77
+//! instructions a polygon (docs/performance.md, "Pipeline frames").
 
 use super::polygon::rgb_word;
 use crate::scene::prepared::PreparedFace;

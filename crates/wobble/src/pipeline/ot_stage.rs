@@ -2,6 +2,10 @@
 //! (flat or Gouraud, textured or not, semi-transparent or not) linked into the ordering
 //! table at its depth, and an untextured semi-transparent polygon's draw-mode word after it
 //! (docs/hardware/gpu.md §2, §6).
+//!
+//! Why this shape: one packet buffer for every polygon, and `OrderingTable::insert` inlined
+//! into the loop (85 K fewer instructions per wall frame, docs/performance.md, "Pipeline
+//! frames").
 
 use super::polygon::ProjectedFace;
 use super::trace::FrameRecorder;

@@ -1,6 +1,11 @@
 //! A polygon between the GTE stage and the ordering table: its screen positions, vertex
 //! colours, texture coordinates and attributes and its ordering-table entry, and the GP0
 //! packet that draws it (docs/hardware/gpu.md §2, §6).
+//!
+//! Why this shape: a polygon keeps its vertex colours as GP0 colour words from the lighting to
+//! its packet, and equal colours make a flat packet, which the GPU draws without colour
+//! interpolation: the flat-only sphere's GPU stage costs half the textured sphere's
+//! (docs/pipeline.md, "Benchmarks").
 
 /// A polygon after the GTE stage, waiting for its packet.
 #[derive(Clone, Copy, Debug, Default)]
