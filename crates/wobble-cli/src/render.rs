@@ -289,7 +289,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
     for frame in 0..frames {
         renderer
             .pose(&animation, &base, frame)
-            .map_err(|e| e.to_string())?;
+            .map_err(|e| format!("animation frame {frame}: {e}"))?;
         let stats = match &inspect_dir {
             Some(dir) if frame + 1 == frames => {
                 let (stats, trace) = renderer

@@ -335,7 +335,7 @@ fn lit_sphere_is_dithered() {
 
 /// Posing checks each frame's positions as `Scene::validate` checks a scene's (within
 /// +-1000000, docs/formats.md, "Limits"): an object drifting past the limit is refused at the
-/// first frame beyond it, with the frame and the field named; the frame before is posed.
+/// first frame beyond it, with the field named; the frame before is posed.
 #[test]
 fn pose_refuses_the_first_frame_out_of_range() {
     let base = Scene::default_scene();
@@ -349,16 +349,8 @@ fn pose_refuses_the_first_frame_out_of_range() {
     let mut r = Renderer::new(base.clone(), hardware()).unwrap();
     assert!(r.pose(&animation, &base, first_bad - 1).is_ok());
     let e = r.pose(&animation, &base, first_bad).unwrap_err();
-    assert_eq!(e.frame, first_bad);
     assert!(
-        matches!(e.source, InvalidScene::Number { .. }),
-        "{:?}",
-        e.source
-    );
-    assert!(
-        e.to_string().starts_with(&format!(
-            "animation frame {first_bad}: object 1: position[2]"
-        )),
-        "{e}"
+        matches!(&e, InvalidScene::Number { field, .. } if field == "object 1: position[2]"),
+        "{e:?}"
     );
 }

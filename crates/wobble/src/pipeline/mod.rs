@@ -85,27 +85,6 @@ impl std::error::Error for RenderError {
     }
 }
 
-/// An animation that poses a scene out of range at one of its frames.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PoseError {
-    /// The frame.
-    pub frame: u32,
-    /// What is out of range.
-    pub source: InvalidScene,
-}
-
-impl fmt::Display for PoseError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "animation frame {}: {}", self.frame, self.source)
-    }
-}
-
-impl std::error::Error for PoseError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        Some(&self.source)
-    }
-}
-
 /// Renders a scene frame by frame into a GPU's VRAM.
 pub struct Renderer {
     scene: Scene,
@@ -196,20 +175,18 @@ impl Renderer {
     }
 
     /// Pose the renderer, built from `base`, for frame `frame` of `animation` (before
-    /// `render_frame(frame)`): the camera on its path, drifting objects at their positions.
+    /// `render_frame(frame)`): the camera on its path, drifting objects at their positions,
+    /// each checked as [`Scene::validate`] checks a scene.
     pub fn pose(
         &mut self,
         animation: &Animation,
         base: &Scene,
         frame: u32,
-    ) -> Result<(), PoseError> {
-        let err = |source| PoseError { frame, source };
-        self.set_camera(animation.camera_at(&base.camera, frame))
-            .map_err(err)?;
+    ) -> Result<(), InvalidScene> {
+        self.set_camera(animation.camera_at(&base.camera, frame))?;
         for (i, o) in base.objects.iter().enumerate() {
             if animation.drift.iter().any(|(d, _)| *d == i) {
-                self.set_object_position(i, animation.position_at(i, o.position, frame))
-                    .map_err(err)?;
+                self.set_object_position(i, animation.position_at(i, o.position, frame))?;
             }
         }
         Ok(())
