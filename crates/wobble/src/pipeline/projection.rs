@@ -13,6 +13,7 @@ use gte::Flag;
 use gte::typed::{Geometry, I4F12};
 
 /// A polygon's vertices after RTPT/RTPS and NCLIP, before the clip verdict.
+#[derive(Default)]
 pub(super) struct Transformed {
     pub(super) flag: Flag,
     pub(super) area: i32,
@@ -32,14 +33,7 @@ pub(super) fn transform(g: &mut Geometry, face: &PreparedFace, subpixel: bool) -
     let v = &face.v;
     let n = if face.quad { 4 } else { 3 };
     if subpixel {
-        let mut t = Transformed {
-            flag: Flag::default(),
-            area: 0,
-            xy: [(0, 0); 4],
-            sz: [0; 4],
-            ir0: I4F12::ZERO,
-            fine: None,
-        };
+        let mut t = Transformed::default();
         let mut fine = [(0, 0); 4];
         for k in 0..n {
             let s = g.project_subpixel(v[k].position);
@@ -148,14 +142,7 @@ pub(super) fn transform_shared(
     quad: bool,
 ) -> Transformed {
     let n = if quad { 4 } else { 3 };
-    let mut t = Transformed {
-        flag: Flag::default(),
-        area: 0,
-        xy: [(0, 0); 4],
-        sz: [0; 4],
-        ir0: I4F12::ZERO,
-        fine: None,
-    };
+    let mut t = Transformed::default();
     let mut sxy = [0u32; 3];
     for (k, &i) in indices.iter().enumerate().take(n) {
         let v = shared.get(i as usize).unwrap_or(&UNPROJECTED);

@@ -212,13 +212,15 @@ mod tests {
     #[test]
     fn pages_right_of_display_and_cluts_below() {
         let mut a = VramAllocator::new(320, 240, 16);
-        let p = a.place("a", &tex(TextureDepth::Clut4, 64)).unwrap();
-        assert_eq!((p.page_x, p.page_y, p.clut), (320, 0, Some((0, 480))));
-        let q = a.place("b", &tex(TextureDepth::Clut4, 64)).unwrap();
-        assert_eq!((q.page_x, q.clut), (384, Some((16, 480))));
-        // 256-wide 15-bit needs four columns.
-        let r = a.place("c", &tex(TextureDepth::Direct15, 256)).unwrap();
-        assert_eq!((r.page_x, r.clut), (448, None));
+        // A 256-wide 15-bit texture (the third) needs four columns, and no CLUT.
+        for (name, depth, width, page_x, clut) in [
+            ("a", TextureDepth::Clut4, 64, 320, Some((0, 480))),
+            ("b", TextureDepth::Clut4, 64, 384, Some((16, 480))),
+            ("c", TextureDepth::Direct15, 256, 448, None),
+        ] {
+            let p = a.place(name, &tex(depth, width)).unwrap();
+            assert_eq!((p.page_x, p.page_y, p.clut), (page_x, 0, clut), "{name}");
+        }
     }
 
     /// At height 256 the buffers fill VRAM's height: 4-bit CLUTs go to x 960..1023 of
