@@ -9,7 +9,6 @@
 use core::fmt;
 
 use crate::Gpu;
-use crate::drawing::FIFO_WORDS;
 
 /// Main RAM size: addresses wrap at 2 MiB.
 pub const RAM_SIZE: usize = 2 * 1024 * 1024;
@@ -175,11 +174,19 @@ fn transfer_cycles(words: u32) -> u32 {
     words.saturating_add(words / 16)
 }
 
-/// GPU cycles to CPU cycles, rounded up, at the NTSC console's 7/11 (docs/hardware/timing.md
-/// §1; PAL's clock is within 0.04% of it).
-fn gpu_to_cpu_cycles(gpu: u32) -> u32 {
-    let cpu = (gpu as u64 * 7).div_ceil(11);
-    u32::try_from(cpu).unwrap_or(u32::MAX)
+/// The time of one DMA as it goes: CPU cycles since it began, and the GPU cycles the drawing
+/// side has been run ahead along with them, so that the GPU drains the FIFO while the DMA
+/// fills it.
+#[derive(Clone, Copy, Debug, Default)]
+struct DmaClock {
+    /// Words moved so far.
+    words: u32,
+    /// CPU cycles since the DMA began: the words' transfer time and the waits.
+    cpu: u32,
+    /// CPU cycles of `cpu` spent waiting on the GPU.
+    waited: u32,
+    /// GPU cycles the drawing side has been run ahead.
+    gpu: u32,
 }
 
 /// DMA6 (OTC): clear an ordering table of `count` words ending at `start` (docs/hardware/
@@ -230,41 +237,75 @@ pub fn dma_clear_ordering_table(ram: &mut [u8], start: u32, count: u32) -> Resul
 }
 
 impl Gpu {
-    /// One GP0 word from DMA: waits (running the drawing side ahead) while the FIFO is full.
-    /// Returns the GPU cycles waited.
-    fn dma_word(&mut self, word: u32) -> u32 {
-        let mut waited = 0u32;
-        if self.drawing.fifo_words() >= FIFO_WORDS {
-            let wait = self.drawing.cycles_until_room();
-            self.drawing.run_ahead(wait);
-            waited = wait;
+    /// The GPU clock over the CPU clock of this console (docs/hardware/timing.md §1).
+    fn ratio(&self) -> (u64, u64) {
+        crate::drawing::clock_ratio(self.timing.standard())
+    }
+
+    /// One more word moved by the DMA of `clock`: its transfer time passes on the drawing
+    /// side too.
+    fn dma_tick(&mut self, clock: &mut DmaClock) {
+        let (num, den) = self.ratio();
+        clock.words = clock.words.saturating_add(1);
+        clock.cpu = transfer_cycles(clock.words).saturating_add(clock.waited);
+        let target = u32::try_from(clock.cpu as u64 * num / den).unwrap_or(u32::MAX);
+        if target > clock.gpu {
+            self.drawing.run_ahead(target - clock.gpu);
+            clock.gpu = target;
         }
-        self.gp0(word);
-        waited
+    }
+
+    /// The DMA of `clock` waited `wait` GPU cycles on the GPU (already run ahead).
+    fn dma_waited(&mut self, clock: &mut DmaClock, wait: u32) {
+        if wait == 0 {
+            return;
+        }
+        let (num, den) = self.ratio();
+        clock.gpu = clock.gpu.saturating_add(wait);
+        // The CPU-side time of the DMA now reaches the drawing side's.
+        let cpu = u32::try_from((clock.gpu as u64 * den).div_ceil(num)).unwrap_or(u32::MAX);
+        if cpu > clock.cpu {
+            clock.waited = clock.waited.saturating_add(cpu - clock.cpu);
+            clock.cpu = cpu;
+        }
+    }
+
+    /// One GP0 word from DMA: it takes its transfer time, then waits while the FIFO is full.
+    fn dma_word(&mut self, clock: &mut DmaClock, word: u32) {
+        self.dma_tick(clock);
+        let wait = self.wait_for_room(word);
+        self.dma_waited(clock, wait);
+        self.gp0_word(word);
     }
 
     /// DMA2 block (sync) mode, RAM to GP0 (docs/hardware/dma.md §4): the words go to GP0 in
     /// order. Returns the CPU cycles taken: one per word (110h per 100h words) plus the time
-    /// spent waiting while the FIFO is full. The drawing time spent waiting has already
-    /// passed on the GPU side: the caller runs the returned cycles through [`Gpu::run`] as
-    /// usual and they are not counted twice.
+    /// spent waiting while the FIFO is full. The GPU drains the FIFO while the words arrive:
+    /// the drawing side runs along with the transfer, and through the waits, so it has
+    /// already been run for the returned cycles: the caller runs them through [`Gpu::run`]
+    /// as usual and they are not counted twice.
     pub fn dma_block_write(&mut self, words: &[u32]) -> u32 {
-        let mut waited = 0u32;
+        let mut clock = DmaClock::default();
         for &w in words {
-            waited = waited.saturating_add(self.dma_word(w));
+            self.dma_word(&mut clock, w);
         }
-        let n = u32::try_from(words.len()).unwrap_or(u32::MAX);
-        transfer_cycles(n).saturating_add(gpu_to_cpu_cycles(waited))
+        clock.cpu
     }
 
     /// DMA2 block (sync) mode, GPUREAD to RAM: each word is a [`Gpu::gpuread`] (VRAM data
     /// of a GP0(C0h) transfer, or the latched value once it is done). Returns the CPU cycles
-    /// taken (110h per 100h words).
+    /// taken: 110h per 100h words, plus the waits for words the GPU has not yet fetched from
+    /// VRAM (see [`Gpu::gpuread_timed`]); the drawing side runs along as for
+    /// [`Gpu::dma_block_write`].
     pub fn dma_block_read(&mut self, out: &mut [u32]) -> u32 {
+        let mut clock = DmaClock::default();
         for w in out.iter_mut() {
+            self.dma_tick(&mut clock);
+            let wait = self.wait_for_read();
+            self.dma_waited(&mut clock, wait);
             *w = self.gpuread();
         }
-        transfer_cycles(u32::try_from(out.len()).unwrap_or(u32::MAX))
+        clock.cpu
     }
 
     /// DMA2 linked-list mode (docs/hardware/dma.md §5, §6): walk the list in
@@ -292,11 +333,12 @@ impl Gpu {
         let mem = ByteRam(ram);
         let mut words = 0u32;
         let mut read = 0u32;
-        let mut waited = 0u32;
+        let mut clock = DmaClock::default();
         let (end, nodes) = walk_nodes(&mem, start, usize::MAX, |addr, count| {
+            self.dma_tick(&mut clock);
             for i in 1..=count {
                 let w = mem.word(mem.offset(addr, i)).unwrap_or(0);
-                waited = waited.saturating_add(self.dma_word(w));
+                self.dma_word(&mut clock, w);
             }
             words += count;
             read += 1 + count;
@@ -307,12 +349,11 @@ impl Gpu {
             WalkEnd::Stopped(next) => ListEnd::Paused { next },
             WalkEnd::BadLink(a) => ListEnd::BadAddress(a),
         };
-        let wait_cycles = gpu_to_cpu_cycles(waited);
         LinkedListReport {
             nodes: u32::try_from(nodes).unwrap_or(u32::MAX),
             words,
-            cycles: transfer_cycles(read).saturating_add(wait_cycles),
-            wait_cycles,
+            cycles: clock.cpu,
+            wait_cycles: clock.waited,
             end,
         }
     }

@@ -2,15 +2,16 @@
 //!
 //! Commands still execute into VRAM the moment their last word arrives; this module keeps the
 //! time they would take on the console. Each command (or, for long commands, each unit the
-//! GPU consumes: one CPU-to-VRAM data word, one polyline vertex) gets a cost in GPU clock
-//! cycles from [`Cost`]. While the GPU is busy, arriving words wait in the 16-word FIFO
-//! (psx-spx "GPU I/O Ports": "a 64-byte (16-word) command FIFO buffer"); the queue below
-//! replays that: the GPU pulls the next unit once the current one's time is spent.
+//! GPU consumes: one CPU-to-VRAM data word, one polyline vertex) gets a cost from [`Cost`].
+//! While the GPU is busy, arriving words wait in the 16-word FIFO (psx-spx "GPU I/O Ports":
+//! "a 64-byte (16-word) command FIFO buffer"); the queue below replays that: the GPU pulls
+//! the next unit once the current one's time is spent.
 //!
-//! Costs are counted in draw units of half a CPU cycle (the unit of Mednafen's drawing-time
-//! accounting, which gains two units per CPU cycle) and converted once per command to GPU
-//! cycles at the NTSC clock ratio, rounded up.
+//! Costs are counted in draw units of 1/256 CPU cycle and converted to GPU cycles at the
+//! console's own clock ratio (docs/hardware/timing.md §1), the fraction of a cycle carried to
+//! the next unit, so that a long run of small units keeps the exact total.
 
+use crate::VideoStandard;
 use crate::rasterizer::DrawCount;
 
 /// Words the GP0 FIFO holds (psx-spx "GPU I/O Ports").
@@ -20,49 +21,78 @@ pub(crate) const FIFO_WORDS: u32 = 16;
 /// FIFO is overfilled, in which case the newest entries merge.
 const QUEUE_LEN: usize = FIFO_WORDS as usize;
 
-/// GPU clock over two CPU clocks: 11/14, the NTSC console's 11/7 ratio
-/// (docs/hardware/timing.md §1; PAL's clock is within 0.04% of it, inside this model's error).
-const UNIT_TO_GPU: (u64, u64) = (11, 14);
+/// Draw units per CPU cycle.
+pub(crate) const UNITS_PER_CYCLE: u32 = 256;
 
-/// Draw units (half CPU cycles) to GPU cycles, rounded up, saturating at `u32::MAX`.
-pub(crate) fn units_to_gpu(units: u64) -> u32 {
-    let (num, den) = UNIT_TO_GPU;
-    let cycles = units.saturating_mul(num).div_ceil(den);
-    u32::try_from(cycles).unwrap_or(u32::MAX)
+/// GPU clock over CPU clock of each console, reduced (docs/hardware/timing.md §1): NTSC 11/7,
+/// PAL 53,203,425 / 33,868,800.
+const NTSC_RATIO: (u64, u64) = VideoStandard::Ntsc.clock_ratio();
+const PAL_RATIO: (u64, u64) = VideoStandard::Pal.clock_ratio();
+
+/// The GPU-to-CPU clock ratio of `standard`'s console.
+pub(crate) const fn clock_ratio(standard: VideoStandard) -> (u64, u64) {
+    match standard {
+        VideoStandard::Ntsc => NTSC_RATIO,
+        VideoStandard::Pal => PAL_RATIO,
+    }
 }
 
-/// The drawing-cost model, in draw units (half CPU cycles). See docs/emulator.md for the
-/// table and its sources; every figure there is approximate.
+/// `cycles` CPU cycles in draw units, saturating.
+pub(crate) const fn cycles(cycles: u32) -> u32 {
+    cycles.saturating_mul(UNITS_PER_CYCLE)
+}
+
+/// The drawing-cost model, in draw units (1/256 CPU cycle). docs/emulator.md, "Drawing time",
+/// gives the table with the source of every figure: the per-pixel, per-row, read-back,
+/// texture-miss, fill, copy and transfer figures are calibrated against a console (ps1-tests
+/// `gpu/bandwidth`, docs/hardware/timing.md §12); the set-up figures are Mednafen's.
 pub(crate) struct Cost;
 
 impl Cost {
-    /// Polygon set-up of a triangle, or of the first triangle of a quad.
-    pub const TRIANGLE_SETUP: u32 = 64 + 18;
-    /// Set-up of the second triangle of a quad.
-    pub const QUAD_SECOND_SETUP: u32 = 28 + 18;
-    /// Extra set-up per triangle: Gouraud and textured.
-    pub const GOURAUD_TEXTURED_SETUP: u32 = 150 * 3;
-    /// Extra set-up per triangle: Gouraud only.
-    pub const GOURAUD_SETUP: u32 = 96 * 3;
-    /// Extra set-up per triangle: textured only.
-    pub const TEXTURED_SETUP: u32 = 60 * 3;
-    /// Rectangle set-up.
-    pub const RECTANGLE_SETUP: u32 = 16;
-    /// Line (and polyline segment) set-up.
-    pub const LINE_SETUP: u32 = 16;
-    /// Per step along a line's major axis.
-    pub const LINE_STEP: u32 = 2;
-    /// Fill set-up.
-    pub const FILL_SETUP: u32 = 46;
-    /// Fill, per row, on top of width / 8.
-    pub const FILL_ROW: u32 = 9;
-    /// VRAM-to-VRAM copy, per pixel.
-    pub const COPY_PIXEL: u32 = 2;
-    /// CPU-to-VRAM transfer, per data word (two pixels).
-    pub const WRITE_WORD: u32 = 2;
+    /// Polygon set-up of a triangle, or of the first triangle of a quad (Mednafen: 41 CPU
+    /// cycles).
+    pub const TRIANGLE_SETUP: u32 = cycles(41);
+    /// Set-up of the second triangle of a quad (Mednafen: 23 CPU cycles).
+    pub const QUAD_SECOND_SETUP: u32 = cycles(23);
+    /// Extra set-up per triangle: Gouraud and textured (Mednafen).
+    pub const GOURAUD_TEXTURED_SETUP: u32 = cycles(225);
+    /// Extra set-up per triangle: Gouraud only (Mednafen).
+    pub const GOURAUD_SETUP: u32 = cycles(144);
+    /// Extra set-up per triangle: textured only (Mednafen).
+    pub const TEXTURED_SETUP: u32 = cycles(90);
+    /// Each pixel a triangle or rectangle writes (calibrated: Rectangle, Polygon quad).
+    pub const PIXEL: u32 = 136;
+    /// Each row a triangle or rectangle walks inside the drawing area (calibrated:
+    /// Rectangle, Polygon quad).
+    pub const ROW: u32 = 615;
+    /// Each even-aligned pixel pair a blending or mask-checking span reads back
+    /// (calibrated: Rectangle (semitransparent)).
+    pub const PAIR: u32 = 140;
+    /// Extra per pixel of a Gouraud-shaded or textured primitive (Mednafen: half a cycle).
+    pub const SHADED_PIXEL: u32 = UNITS_PER_CYCLE / 2;
+    /// Rectangle set-up (Mednafen).
+    pub const RECTANGLE_SETUP: u32 = cycles(8);
+    /// Line (and polyline segment) set-up (Mednafen's sprite figure).
+    pub const LINE_SETUP: u32 = cycles(8);
+    /// Per step along a line's major axis (Mednafen).
+    pub const LINE_STEP: u32 = cycles(1);
+    /// Fill set-up (Mednafen).
+    pub const FILL_SETUP: u32 = cycles(23);
+    /// Fill, per 16 pixels of a row (Mednafen).
+    pub const FILL_16_PIXELS: u32 = cycles(1);
+    /// Fill, per row (calibrated: FillScreen GP0(2)).
+    pub const FILL_ROW: u32 = 1870;
+    /// VRAM-to-VRAM copy, per pixel (calibrated: vramToVram).
+    pub const COPY_PIXEL: u32 = 347;
+    /// CPU-to-VRAM transfer, per data word: two pixels at [`Cost::PIXEL`] each.
+    pub const WRITE_WORD: u32 = 2 * Self::PIXEL;
+    /// VRAM-to-CPU transfer, per word the GPU fetches for GPUREAD (calibrated: vramToCpu).
+    pub const READ_WORD: u32 = 570;
+    /// Each CLUT entry loaded into the CLUT cache (Mednafen: half a cycle).
+    pub const CLUT_ENTRY: u32 = UNITS_PER_CYCLE / 2;
 
-    /// One triangle: set-up, then per drawn pixel 1, plus 1 more when Gouraud-shaded or
-    /// textured, else half a unit per pixel pair when blending or mask-checking.
+    /// One triangle: set-up, then per row walked, per pixel drawn, per shaded (Gouraud or
+    /// textured) pixel and per pixel pair read back when blending or mask-checking.
     pub fn triangle(
         second_of_quad: bool,
         gouraud: bool,
@@ -81,36 +111,46 @@ impl Cost {
             (false, true) => Self::TEXTURED_SETUP,
             (false, false) => 0,
         };
-        let extra = if gouraud || textured {
-            drawn.pixels
-        } else if read_back {
-            drawn.pairs
-        } else {
-            0
-        };
+        let shaded = if gouraud || textured { drawn.pixels } else { 0 };
         setup
             .saturating_add(shading)
-            .saturating_add(drawn.pixels)
-            .saturating_add(extra)
+            .saturating_add(Self::span_work(read_back, drawn))
+            .saturating_add(shaded.saturating_mul(Self::SHADED_PIXEL))
     }
 
-    /// One rectangle: set-up, per drawn pixel 1, plus half a unit per pixel pair when
-    /// blending or mask-checking.
-    pub fn rectangle(read_back: bool, drawn: DrawCount) -> u32 {
-        let extra = if read_back { drawn.pairs } else { 0 };
+    /// Rows, pixels and read-back pairs.
+    fn span_work(read_back: bool, drawn: DrawCount) -> u32 {
+        let pairs = if read_back { drawn.pairs } else { 0 };
+        drawn
+            .rows
+            .saturating_mul(Self::ROW)
+            .saturating_add(drawn.pixels.saturating_mul(Self::PIXEL))
+            .saturating_add(pairs.saturating_mul(Self::PAIR))
+    }
+
+    /// One rectangle: set-up, per row walked, per pixel drawn, per textured pixel, and per
+    /// pixel pair read back when blending or mask-checking.
+    pub fn rectangle(textured: bool, read_back: bool, drawn: DrawCount) -> u32 {
+        let shaded = if textured { drawn.pixels } else { 0 };
         Self::RECTANGLE_SETUP
-            .saturating_add(drawn.pixels)
-            .saturating_add(extra)
+            .saturating_add(Self::span_work(read_back, drawn))
+            .saturating_add(shaded.saturating_mul(Self::SHADED_PIXEL))
     }
 
     /// One line segment of `steps` major-axis steps (the drawn points minus one).
     pub fn line(drawn: DrawCount) -> u32 {
-        Self::LINE_SETUP.saturating_add(drawn.pixels.saturating_sub(1) * Self::LINE_STEP)
+        Self::LINE_SETUP.saturating_add(
+            drawn
+                .pixels
+                .saturating_sub(1)
+                .saturating_mul(Self::LINE_STEP),
+        )
     }
 
     /// GP0(02h) over `width` (already rounded to 16) x `height`.
     pub fn fill(width: u32, height: u32) -> u32 {
-        Self::FILL_SETUP + height * (width / 8 + Self::FILL_ROW)
+        let row = (width / 16) * Self::FILL_16_PIXELS + Self::FILL_ROW;
+        Self::FILL_SETUP.saturating_add(height.saturating_mul(row))
     }
 
     /// GP0(80h) over `pixels`.
@@ -120,7 +160,7 @@ impl Cost {
 
     /// Loading `entries` CLUT entries into the CLUT cache.
     pub fn clut_load(entries: u32) -> u32 {
-        entries
+        entries.saturating_mul(Self::CLUT_ENTRY)
     }
 }
 
@@ -151,6 +191,11 @@ pub(crate) struct Drawing {
     ahead: u32,
     /// The GPU went from busy to idle and `run` has not reported it yet.
     done_pending: bool,
+    /// What the conversion of draw units to GPU cycles has carried over: a fraction of a
+    /// GPU cycle, in units of 1 / (256 x the clock ratio's denominator).
+    carry: u64,
+    /// GPU cycles of every unit received so far.
+    total: u64,
 }
 
 impl Drawing {
@@ -176,6 +221,9 @@ impl Drawing {
         if self.idle() && self.fifo_words != 0 {
             return Err("idle GPU with words in the FIFO");
         }
+        if self.carry >= PAL_RATIO.1.max(NTSC_RATIO.1) * UNITS_PER_CYCLE as u64 {
+            return Err("drawing-time carry of a whole GPU cycle or more");
+        }
         Ok(())
     }
 
@@ -198,19 +246,51 @@ impl Drawing {
         }
     }
 
-    /// `n` GP0 words of one command arrived and form a unit costing `cycles`: `n` calls of
-    /// [`Drawing::receive`], then [`Drawing::complete`].
-    pub fn receive_unit(&mut self, takes_space: bool, n: u32, cycles: u32) {
+    /// `n` GP0 words of one command arrived and form a unit costing `units` draw units: `n`
+    /// calls of [`Drawing::receive`], then [`Drawing::complete`]. Returns the unit's GPU
+    /// cycles.
+    pub fn receive_unit(
+        &mut self,
+        takes_space: bool,
+        n: u32,
+        units: u32,
+        ratio: (u64, u64),
+    ) -> u32 {
         let queued = if takes_space && !self.idle() { n } else { 0 };
         self.fifo_words += queued;
         let words = core::mem::take(&mut self.partial_words) + queued;
+        let cycles = self.convert(units, ratio);
         self.complete_words(words, cycles);
+        cycles
     }
 
-    /// The words received since the previous unit form a unit costing `cycles`.
-    pub fn complete(&mut self, cycles: u32) {
+    /// The words received since the previous unit form a unit costing `units` draw units.
+    /// Returns the unit's GPU cycles.
+    pub fn complete(&mut self, units: u32, ratio: (u64, u64)) -> u32 {
         let words = core::mem::take(&mut self.partial_words);
+        let cycles = self.convert(units, ratio);
         self.complete_words(words, cycles);
+        cycles
+    }
+
+    /// `units` draw units in GPU cycles at `ratio` (GPU cycles per CPU cycle), the fraction
+    /// left over carried to the next call; counted in [`Drawing::total`].
+    #[inline(always)]
+    fn convert(&mut self, units: u32, (num, den): (u64, u64)) -> u32 {
+        if units == 0 {
+            return 0;
+        }
+        let per_cycle = den * UNITS_PER_CYCLE as u64;
+        let scaled = units as u64 * num + self.carry;
+        self.carry = scaled % per_cycle;
+        let cycles = u32::try_from(scaled / per_cycle).unwrap_or(u32::MAX);
+        self.total = self.total.saturating_add(cycles as u64);
+        cycles
+    }
+
+    /// GPU cycles of every unit received since power-on (or the last GP1(00h)).
+    pub fn total(&self) -> u64 {
+        self.total
     }
 
     /// `words` FIFO words form a unit costing `cycles`.
@@ -332,13 +412,14 @@ impl Drawing {
 
     /// GP1(01h): queued and partly received units are dropped; the executing one finishes.
     pub fn clear_fifo(&mut self) {
-        let busy = self.busy;
-        let ahead = self.ahead;
-        let done = self.done_pending;
-        *self = Self::default();
-        self.busy = busy;
-        self.ahead = ahead;
-        self.done_pending = done;
+        *self = Self {
+            busy: self.busy,
+            ahead: self.ahead,
+            done_pending: self.done_pending,
+            carry: self.carry,
+            total: self.total,
+            ..Self::default()
+        };
     }
 }
 
@@ -377,13 +458,25 @@ mod tests {
 
     #[test]
     fn unit_conversion_matches_the_clock_ratio() {
-        // 14 units = 7 CPU cycles = 11 GPU cycles exactly.
-        assert_eq!(units_to_gpu(14), 11);
-        // One unit is 0.79 GPU cycles: rounds up to 1.
-        assert_eq!(units_to_gpu(1), 1);
-        assert_eq!(units_to_gpu(0), 0);
-        // 100 units = 78.57 GPU cycles, rounded up.
-        assert_eq!(units_to_gpu(100), 79);
+        let ntsc = clock_ratio(VideoStandard::Ntsc);
+        assert_eq!(ntsc, (11, 7));
+        let mut d = Drawing::default();
+        // 7 CPU cycles = 11 GPU cycles exactly, nothing carried.
+        assert_eq!(d.convert(cycles(7), ntsc), 11);
+        assert_eq!(d.carry, 0);
+        // Half a CPU cycle is 11/14 GPU cycle: 0 now, the fraction carried; fourteen of them
+        // make 11 cycles in all.
+        assert_eq!(d.convert(128, ntsc), 0);
+        let sum: u32 = (0..13).map(|_| d.convert(128, ntsc)).sum();
+        assert_eq!(sum, 11);
+        assert_eq!(d.carry, 0);
+        assert_eq!(d.total(), 22);
+        // PAL: 451,584 CPU cycles are 709,379 GPU cycles.
+        let pal = clock_ratio(VideoStandard::Pal);
+        assert_eq!(pal, (709_379, 451_584));
+        let mut d = Drawing::default();
+        assert_eq!(d.convert(cycles(451_584), pal), 709_379);
+        assert_eq!(d.carry, 0);
     }
 
     #[test]
@@ -392,7 +485,14 @@ mod tests {
         for _ in 0..3 {
             d.receive(true);
         }
-        d.complete(1000);
+        d.complete(cycles(7000), (11, 7));
+        assert_eq!(d.fifo_words(), 0);
+        assert_eq!(d.cycles_until_idle(), 11000);
+        let mut d = Drawing::default();
+        for _ in 0..3 {
+            d.receive(true);
+        }
+        d.complete_words(0, 1000);
         assert_eq!(d.fifo_words(), 0);
         assert_eq!(d.cycles_until_idle(), 1000);
         assert!(!d.idle());
@@ -402,13 +502,13 @@ mod tests {
     fn words_queue_while_busy_and_drain_in_order() {
         let mut d = Drawing::default();
         d.receive(true);
-        d.complete(100);
+        d.complete(cycles(700), (1, 7));
         // Two 3-word units behind it.
-        for cost in [50, 70] {
+        for cost in [350, 490] {
             for _ in 0..3 {
                 d.receive(true);
             }
-            d.complete(cost);
+            d.complete(cycles(cost), (1, 7));
         }
         assert_eq!(d.fifo_words(), 6);
         assert_eq!(d.cycles_until_idle(), 220);
@@ -428,9 +528,9 @@ mod tests {
     fn words_that_take_no_space_never_count() {
         let mut d = Drawing::default();
         d.receive(true);
-        d.complete(10);
+        d.complete(cycles(10), (1, 1));
         d.receive(false);
-        d.complete(0);
+        d.complete(0, (1, 1));
         assert_eq!(d.fifo_words(), 0);
         assert!(!d.unit_queued());
     }
@@ -438,13 +538,13 @@ mod tests {
     #[test]
     fn room_appears_when_enough_units_leave() {
         let mut d = Drawing::default();
-        d.complete(10);
+        d.complete(cycles(10), (1, 1));
         // Four 4-word units fill the FIFO.
         for cost in [1, 2, 3, 4] {
             for _ in 0..4 {
                 d.receive(true);
             }
-            d.complete(cost);
+            d.complete(cycles(cost), (1, 1));
         }
         assert_eq!(d.fifo_words(), 16);
         // The executing unit (10) must finish, then the first queued unit is pulled.
@@ -460,9 +560,9 @@ mod tests {
     #[test]
     fn fifo_clear_keeps_the_executing_unit() {
         let mut d = Drawing::default();
-        d.complete(10);
+        d.complete(cycles(10), (1, 1));
         d.receive(true);
-        d.complete(5);
+        d.complete(cycles(5), (1, 1));
         d.clear_fifo();
         assert_eq!(d.fifo_words(), 0);
         assert_eq!(d.cycles_until_idle(), 10);

@@ -4,7 +4,7 @@
 //! from the command table ([`crate::command`]).
 
 use crate::command::{self, Command, Kind, LineOp, MAX_PACKET, PolygonOp, RectangleOp, SpriteSize};
-use crate::drawing::{Cost, units_to_gpu};
+use crate::drawing::{Cost, FIFO_WORDS, clock_ratio};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
     DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
@@ -406,7 +406,8 @@ pub(crate) fn rectangle_packet(
 }
 
 impl Gpu {
-    /// One word written to the GP0 port.
+    /// One word written to the GP0 port by a CPU store; returns the CPU cycles the store
+    /// waited.
     ///
     /// Packets may arrive one word at a time, as CPU writes to 1F801810h do:
     ///
@@ -418,17 +419,52 @@ impl Gpu {
     /// assert_eq!(gpu.vram().pixel(15, 0), 0x001F);
     /// assert_eq!(gpu.vram().pixel(16, 0), 0);
     /// ```
-    pub fn gp0(&mut self, word: u32) {
-        let units = match self.gp0.mode {
+    ///
+    /// A store into a full FIFO waits until the GPU takes the next command and there is
+    /// room (docs/emulator.md, "The FIFO and GPUSTAT bits 25-28"): the drawing side runs
+    /// ahead through the wait and the CPU cycles it took are returned (0 when there was
+    /// room). The CPU is stalled for them: add them to its time and pass them to
+    /// [`Gpu::run`] as usual; they are not counted twice.
+    pub fn gp0(&mut self, word: u32) -> u32 {
+        let wait = self.wait_for_room(word);
+        self.gp0_word(word);
+        self.gpu_to_cpu_cycles(wait)
+    }
+
+    /// Whether `word`, arriving now, takes a place in the FIFO (psx-spx "GPU Other
+    /// Commands": GP0(00h), 04h-1Eh, E0h, E3h-E5h and E7h-EFh take none).
+    fn word_takes_space(&self, word: u32) -> bool {
+        match self.gp0.mode {
+            Mode::Write(_) | Mode::Polyline(_) => true,
+            Mode::Command if self.gp0.len == 0 => Command::of(word).takes_fifo_space,
+            Mode::Command => Command::of(self.gp0.buf[0]).takes_fifo_space,
+        }
+    }
+
+    /// If `word` needs a FIFO place and the FIFO is full, run the drawing side until the GPU
+    /// has taken enough to make room; returns the GPU cycles waited.
+    pub(crate) fn wait_for_room(&mut self, word: u32) -> u32 {
+        if self.drawing.fifo_words() < FIFO_WORDS || !self.word_takes_space(word) {
+            return 0;
+        }
+        let wait = self.drawing.cycles_until_room();
+        self.drawing.run_ahead(wait);
+        wait
+    }
+
+    /// One GP0 word, whatever the FIFO holds.
+    pub(crate) fn gp0_word(&mut self, word: u32) {
+        // `fetch`: the unit is a VRAM-to-CPU transfer's fetch.
+        let (fetch, units) = match self.gp0.mode {
             Mode::Write(mut t) => {
                 self.drawing.receive(true);
                 let more = t.push(&mut self.vram, word, self.draw.mask);
                 self.gp0.mode = if more { Mode::Write(t) } else { Mode::Command };
-                Some(Cost::WRITE_WORD)
+                (false, Some(Cost::WRITE_WORD))
             }
             Mode::Polyline(p) => {
                 self.drawing.receive(true);
-                self.polyline_word(p, word)
+                (false, self.polyline_word(p, word))
             }
             Mode::Command => {
                 let len = self.gp0.len;
@@ -438,17 +474,21 @@ impl Gpu {
                     *slot = word;
                 }
                 self.gp0.len = len + 1;
+                let fetch = matches!(head.kind, Kind::VramToCpu);
                 if self.gp0.len >= head.words {
                     let packet = self.gp0.buf;
                     self.gp0.len = 0;
-                    Some(self.execute(&packet))
+                    (fetch, Some(self.execute(&packet)))
                 } else {
-                    None
+                    (fetch, None)
                 }
             }
         };
         if let Some(units) = units {
-            self.drawing.complete(units_to_gpu(units as u64));
+            let cycles = self
+                .drawing
+                .complete(units, clock_ratio(self.timing.standard()));
+            self.read.unit_queued(fetch, cycles);
         }
     }
 
@@ -484,9 +524,14 @@ impl Gpu {
         };
         // Executing a packet leaves the drawing side as it was: the words are received and
         // complete a unit together.
-        let cycles = units_to_gpu(units as u64);
-        self.drawing
-            .receive_unit(head.takes_fifo_space, n as u32, cycles);
+        let cycles = self.drawing.receive_unit(
+            head.takes_fifo_space,
+            n as u32,
+            units,
+            clock_ratio(self.timing.standard()),
+        );
+        self.read
+            .unit_queued(matches!(head.kind, Kind::VramToCpu), cycles);
         n
     }
 
@@ -549,7 +594,11 @@ impl Gpu {
                 let rect = TransferRect::decode(p[1], p[2]);
                 self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
             }
-            Kind::VramToCpu => self.read = ReadTransfer::new(TransferRect::decode(p[1], p[2])),
+            Kind::VramToCpu => {
+                let rect = TransferRect::decode(p[1], p[2]);
+                self.read = ReadTransfer::new(rect);
+                return rect.pixels().div_ceil(2).saturating_mul(Cost::READ_WORD);
+            }
             Kind::DrawMode
             | Kind::TextureWindow
             | Kind::AreaTopLeft
@@ -729,8 +778,10 @@ impl Gpu {
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let rows = self.draw_rows();
+        let textured = rect.texture.is_some();
         let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
         clut_units.saturating_add(Cost::rectangle(
+            textured,
             op.semi_transparent || self.draw.mask.check,
             drawn,
         ))
@@ -819,9 +870,10 @@ mod tests {
         }
     }
 
-    /// A flat quad's drawing cost is both triangles' set-up plus one unit per pixel drawn
-    /// (docs/emulator.md, "Drawing time": 82 + 46 + pixels), whether its triangles tile a
-    /// rectangle (drawn one span per line) or not.
+    /// A flat quad's drawing cost is both triangles' set-up (41 + 23 CPU cycles), each
+    /// triangle's rows and the pixels drawn (docs/emulator.md, "Drawing time": 615 and 136
+    /// 256ths of a cycle), whether its triangles tile a rectangle (drawn one span per line)
+    /// or not.
     #[test]
     fn flat_quad_cost() {
         let quad = |g: &mut Gpu, v: [(u32, u32); 4]| {
@@ -832,26 +884,35 @@ mod tests {
             }
             g.polygon(PolygonOp::from_op(0x28), &p)
         };
+        let units = |rows: u32, pixels: u32| (41 + 23) * 256 + rows * 615 + pixels * 136;
         let mut g = Gpu::new();
         g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
-        // Tiling orders: 10 x 20 and 320 x 240.
+        // Tiling orders: 10 x 20 and 320 x 240; each triangle spans every row.
         assert_eq!(
             quad(&mut g, [(0, 0), (10, 0), (0, 20), (10, 20)]),
-            128 + 200
+            units(2 * 20, 200)
         );
         assert_eq!(
             quad(&mut g, [(10, 0), (10, 20), (0, 0), (0, 20)]),
-            128 + 200
+            units(2 * 20, 200)
         );
         assert_eq!(
             quad(&mut g, [(5, 5), (325, 5), (5, 245), (325, 245)]),
-            128 + 320 * 240
+            units(2 * 240, 320 * 240)
         );
-        // Clipped by the drawing area (0..=99, 0..=49): 100 x 50 of 320 x 240 drawn.
+        // Not a tiling (a kite, drawn on its own): the first triangle spans rows 0-9, the
+        // second rows 10-19.
+        let mut k = Gpu::new();
+        k.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
+        let kite = quad(&mut k, [(10, 0), (0, 10), (20, 10), (10, 20)]);
+        let drawn = k.vram().as_slice().iter().filter(|&&p| p != 0).count() as u32;
+        assert_eq!(kite, units(10 + 10, drawn));
+        // Clipped by the drawing area (0..=99, 0..=49): 100 x 50 of 320 x 240 drawn, 50 rows
+        // each.
         g.gp0_words(&[0xE300_0000, 0xE400_0000 | 99 | 49 << 10]);
         assert_eq!(
             quad(&mut g, [(0, 0), (320, 0), (0, 240), (320, 240)]),
-            128 + 100 * 50
+            units(2 * 50, 100 * 50)
         );
     }
 }

@@ -263,12 +263,30 @@ impl Gpu {
         }
     }
 
-    /// A block of GP0 words, as DMA2 delivers them.
+    /// CPU cycles until the GPU has finished every command it has received (drawing, fills,
+    /// copies, transfer units), counted from the clock [`Gpu::run`] keeps; 0 when it has
+    /// nothing left to do.
+    pub fn drawing_cycles_left(&self) -> u32 {
+        let gpu = self
+            .drawing
+            .ahead()
+            .saturating_add(self.drawing.cycles_until_idle());
+        if gpu == 0 {
+            0
+        } else {
+            self.timing.cpu_cycles_for(gpu as u64)
+        }
+    }
+
+    /// A block of GP0 words, each received as [`Gpu::gp0`] receives it, with no time passing:
+    /// the words never wait for FIFO room (a FIFO overfilled this way holds the excess with
+    /// the newest command). For timing, send words with [`Gpu::gp0`] or
+    /// [`Gpu::dma_block_write`].
     pub fn gp0_words(&mut self, mut words: &[u32]) {
         while let Some((&first, rest)) = words.split_first() {
             let taken = self.gp0_packet(words);
             if taken == 0 {
-                self.gp0(first);
+                self.gp0_word(first);
                 words = rest;
             } else {
                 words = words.get(taken..).unwrap_or_default();
@@ -293,6 +311,50 @@ impl Gpu {
             self.gpuread_latch = word;
         }
         self.gpuread_latch
+    }
+
+    /// A CPU load from GPUREAD, timed: the word [`Gpu::gpuread`] returns and the CPU cycles
+    /// the load waited for it. During a GP0(C0h) transfer the GPU fetches the rectangle from
+    /// VRAM at its own rate (docs/emulator.md, "Drawing time"), and a load of a word not yet
+    /// fetched waits: the drawing side runs ahead through the wait, which the caller adds to
+    /// the CPU's time and passes to [`Gpu::run`] as usual.
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.gp0_words(&[0xC000_0000, 0, 1 << 16 | 64]); // GP0(C0h): 64x1, 32 words
+    /// let (_, wait) = gpu.gpuread_timed();
+    /// assert!(wait > 0); // the first word was not fetched yet: the load waited
+    /// gpu.run(wait); // the CPU's time passes as usual (the GPU side is not run twice)
+    /// gpu.run(1_000); // far longer than fetching 32 words
+    /// assert_eq!(gpu.gpuread_timed().1, 0); // every word is there
+    /// ```
+    pub fn gpuread_timed(&mut self) -> (u32, u32) {
+        let wait = self.wait_for_read();
+        (self.gpuread(), self.gpu_to_cpu_cycles(wait))
+    }
+
+    /// Run the drawing side until the next GPUREAD word of a VRAM-to-CPU transfer is
+    /// fetched; returns the GPU cycles waited.
+    pub(crate) fn wait_for_read(&mut self) -> u32 {
+        let wait = self
+            .read
+            .cycles_until_ready(self.drawing.cycles_until_idle());
+        self.drawing.run_ahead(wait);
+        wait
+    }
+
+    /// GPU cycles in CPU cycles at this console's clock ratio, rounded up.
+    pub(crate) fn gpu_to_cpu_cycles(&self, gpu: u32) -> u32 {
+        let (num, den) = drawing::clock_ratio(self.timing.standard());
+        u32::try_from((gpu as u64 * den).div_ceil(num)).unwrap_or(u32::MAX)
+    }
+
+    /// GPU cycles of all the work the GPU has received since power-on: every command's
+    /// modelled time (drawing, fills, copies, transfers), whether or not it has run yet. The
+    /// difference across a command is that command's time; debuggers and profilers show it
+    /// per draw (docs/emulator.md, "Drawing time").
+    pub fn work_cycles(&self) -> u64 {
+        self.drawing.total()
     }
 
     /// The GPU interrupt line, GPUSTAT.24: set by GP0(1Fh), cleared by GP1(02h) (psx-spx

@@ -184,12 +184,20 @@ impl WriteTransfer {
 }
 
 /// A VRAM-to-CPU transfer in progress (GP0 C0h), read through GPUREAD.
+///
+/// The GPU fetches the rectangle from VRAM at a fixed rate once it reaches the command
+/// (docs/emulator.md, "Drawing time"): the fetch is a drawing unit of `fetch` GPU cycles, and
+/// word `k` of `n` is ready `fetch * (k + 1) / n` cycles after it starts. `tail` counts the
+/// GPU cycles of units queued after the fetch, which the time to the drawing side's idle
+/// includes and the fetch does not.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct ReadTransfer {
     rect: TransferRect,
     next: u32,
     active: bool,
+    fetch: u32,
+    tail: u32,
 }
 
 impl ReadTransfer {
@@ -199,7 +207,38 @@ impl ReadTransfer {
             rect,
             next: 0,
             active: true,
+            fetch: 0,
+            tail: 0,
         }
+    }
+
+    /// A drawing unit of `cycles` GPU cycles was queued: the transfer's own fetch when
+    /// `fetch` (its GP0(C0h) packet), else a unit behind it.
+    #[inline(always)]
+    pub fn unit_queued(&mut self, fetch: bool, cycles: u32) {
+        if fetch {
+            self.fetch = cycles;
+            self.tail = 0;
+        } else if self.active {
+            self.tail = self.tail.saturating_add(cycles);
+        }
+    }
+
+    /// GPU cycles until the next word is fetched, given the GPU cycles until the drawing
+    /// side has finished every unit queued so far (0 when it is ready or no transfer is
+    /// active).
+    pub fn cycles_until_ready(&self, until_idle: u32) -> u32 {
+        if !self.active {
+            return 0;
+        }
+        let words = self.rect.pixels().div_ceil(2) as u64;
+        let left = self.rect.pixels().saturating_sub(self.next).div_ceil(2) as u64;
+        // Fetching the words after the next one takes this long.
+        let after = (self.fetch as u64 * left.saturating_sub(1))
+            .checked_div(words)
+            .unwrap_or(0);
+        let end_of_fetch = until_idle.saturating_sub(self.tail) as u64;
+        end_of_fetch.saturating_sub(after) as u32
     }
 
     /// An active transfer has a valid rectangle and an even pixel count below its size; an

@@ -510,9 +510,9 @@ fn gpu_packet_len(cmd: u32) -> usize {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 
-    /// `gp0_words` over blocks of any size has the effect of `gp0` word by word: the same
-    /// VRAM, GPUSTAT (with the FIFO-full bit), pending input and next event, with the GPU
-    /// run between blocks.
+    /// `gp0_words` over blocks of any size has the effect of `gp0_words` word by word: the
+    /// same VRAM, GPUSTAT (with the FIFO-full bit), pending input and next event, with the
+    /// GPU run between blocks.
     #[test]
     fn blocks_equal_single_words(
         packets in prop::collection::vec(packet(), 1..40),
@@ -531,7 +531,7 @@ proptest! {
             let end = (at + len).min(words.len());
             blocks.gp0_words(&words[at..end]);
             for &w in &words[at..end] {
-                single.gp0(w);
+                single.gp0_words(&[w]);
             }
             prop_assert_eq!(blocks.run(cycles), single.run(cycles));
             prop_assert_eq!(blocks.gpustat(), single.gpustat());

@@ -1,12 +1,15 @@
 //! DMA channel 2 (block and linked-list mode) and channel 6 (OTC), drawing time, the FIFO
 //! and the GPU interrupt. Console expectations come from ps1-tests `dma/otc-test` and
 //! `dma/chain-looping` (main.cpp and psx.log; MIT, Copyright (c) 2020 Jakub Czekański,
-//! fixtures/gpu/LICENSE-ps1-tests) and psx-spx "DMA Channels"; cycle figures are worked out
-//! here from the cost table in docs/emulator.md with floating-point clock ratios.
+//! fixtures/gpu/LICENSE-ps1-tests) and psx-spx "DMA Channels"; cycle
+//! figures are worked out here from the cost table in docs/emulator.md with floating-point
+//! clock ratios.
 
 use gpu::{DmaError, Gpu, LINKED_LIST_WORD_BUDGET, ListEnd, dma_clear_ordering_table};
 use proptest::prelude::*;
 
+#[path = "support/cost.rs"]
+mod cost;
 #[path = "support/quiet.rs"]
 mod quiet;
 use quiet::quiet;
@@ -21,17 +24,6 @@ fn read(ram: &[u8], addr: u32) -> u32 {
 fn write(ram: &mut [u8], addr: u32, value: u32) {
     let a = (addr & 0x1F_FFFF) as usize;
     ram[a..a + 4].copy_from_slice(&value.to_le_bytes());
-}
-
-/// Draw units (half CPU cycles) to GPU cycles, rounded up: the NTSC console's GPU clock is
-/// 11/7 of the CPU clock (docs/hardware/timing.md §1), so a unit is 11/14 GPU cycle.
-fn units_to_gpu(units: f64) -> u32 {
-    (units * 11.0 / 14.0 - 1e-9).ceil() as u32
-}
-
-/// GPU cycles to CPU cycles, rounded up (7/11).
-fn gpu_to_cpu(gpu: u32) -> u32 {
-    (gpu as f64 * 7.0 / 11.0 - 1e-9).ceil() as u32
 }
 
 // ---- DMA6 OTC: ps1-tests dma/otc-test ----
@@ -193,8 +185,8 @@ proptest! {
 
 // ---- Drawing time, FIFO waits, IRQ ----
 
-/// A flat opaque triangle costs its set-up (82 units) plus one unit per drawn pixel; the
-/// pixels are counted here from VRAM.
+/// A flat opaque triangle costs its set-up, its rows and its drawn pixels; the pixels are
+/// counted here from VRAM.
 #[test]
 fn flat_triangle_time_follows_drawn_pixels() {
     let mut g = quiet();
@@ -202,8 +194,9 @@ fn flat_triangle_time_follows_drawn_pixels() {
     g.gp0_words(&[0x2000_00FF, 0x0000_0000, 0x0000_0040, 0x0030_0000]);
     let drawn = g.vram().as_slice().iter().filter(|&&p| p != 0).count();
     assert!(drawn > 1000);
-    let gpu_cycles = units_to_gpu(82.0 + drawn as f64);
-    assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(gpu_cycles));
+    // Rows 0 to 47: from the top vertex down to the bottom one.
+    let time = cost::TRIANGLE_SETUP + 48.0 * cost::ROW + drawn as f64 * cost::PIXEL;
+    assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
 }
 
 /// Busy-to-idle is reported exactly when the predicted cycles have run, once.
@@ -213,13 +206,32 @@ fn drawing_done_arrives_at_the_predicted_cycle() {
     g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
     g.gp0_words(&[0x6000_00FF, 0, 0x0040_0040]);
     let n = g.cycles_until_next_event();
-    // A 64x64 rectangle: 16 set-up units + 4096 pixels.
-    assert_eq!(n, gpu_to_cpu(units_to_gpu(16.0 + 4096.0)));
+    // A 64x64 rectangle: set-up, 64 rows, 4096 pixels.
+    let time = cost::RECTANGLE_SETUP + 64.0 * cost::ROW + 4096.0 * cost::PIXEL;
+    assert_eq!(n, cost::cycles_to_idle(time));
     assert!(!g.run(n - 1).drawing_done);
     assert_eq!(g.cycles_until_next_event(), 1);
     assert!(g.run(1).drawing_done);
     assert!(!g.run(1000).drawing_done);
     assert_eq!(g.cycles_until_next_event(), u32::MAX);
+}
+
+/// A PAL console converts the same costs at its own clock ratio (53,203,425 / 33,868,800,
+/// docs/hardware/timing.md §1): a draw takes the same CPU time on both consoles, in fewer
+/// GPU cycles on the slower PAL clock.
+#[test]
+fn pal_console_draw_time_uses_the_pal_clock() {
+    let time = cost::RECTANGLE_SETUP + 64.0 * cost::ROW + 4096.0 * cost::PIXEL;
+    let mut pal = Gpu::with_standard(gpu::VideoStandard::Pal);
+    pal.gp1(0x0600_0000);
+    pal.gp1(0x07FF_FFFF);
+    pal.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
+    pal.gp0_words(&[0x6000_00FF, 0, 0x0040_0040]);
+    let (num, den) = (53_203_425.0, 33_868_800.0);
+    let gpu = (time * num / den + 1e-9).floor();
+    let expected = (gpu * den / num - 1e-9).ceil() as u32;
+    assert_eq!(pal.cycles_until_next_event(), expected);
+    assert!(expected.abs_diff(cost::cycles_to_idle(time)) <= 1);
 }
 
 /// GP0(1Fh) sets GPUSTAT.24, reported once by the next run; GP1(02h) acknowledges.
@@ -243,18 +255,26 @@ fn gp0_1f_raises_the_irq_once() {
     assert!(g.run(0).gpu_irq);
 }
 
-/// Seven small fills (21 words) by DMA: the first executes, five wait in the FIFO (15
-/// words), the seventh's first word fills it; its second word waits for the first fill to
-/// end and the second to leave the FIFO.
+/// GPU cycles the drawing side has run when word `n` of a DMA arrives: the words move at
+/// one CPU cycle each plus one per 16 (docs/hardware/dma.md §10), and the GPU drains the
+/// FIFO meanwhile (floor of 11/7 of the CPU cycles).
+fn gpu_at_word(n: u32) -> u64 {
+    ((n + n / 16) as u64 * 11) / 7
+}
+
+/// Seven small fills (21 words) by DMA: the first starts with its third word and the next
+/// five wait in the FIFO (15 words); the sixth's second word finds the FIFO full and waits
+/// for the first fill to end and the second to leave the FIFO; the last word follows.
 #[test]
 fn block_dma_waits_while_the_fifo_is_full() {
     let fill = [0x0200_0000u32, 0, 0x0001_0010];
     let words: Vec<u32> = fill.iter().copied().cycle().take(21).collect();
     let mut g = Gpu::new();
     let cycles = g.dma_block_write(&words);
-    // A 16x1 fill: 46 + 1 * (16 / 8 + 9) units.
-    let fill_gpu = units_to_gpu(46.0 + 11.0);
-    assert_eq!(cycles, 21 + 21 / 16 + gpu_to_cpu(fill_gpu));
+    // A 16x1 fill: its set-up, one row, one 16-pixel group.
+    let fill_gpu = cost::gpu_cycles(cost::fill(16, 1));
+    // Word 20 waits until the first fill ends, word 21 takes one more cycle.
+    assert_eq!(cycles, cost::cpu_cycles(gpu_at_word(3) + fill_gpu) + 1);
     // GPUSTAT: the FIFO holds 15 words again (fills 3 to 7), complete commands waiting.
     assert_eq!(g.gpustat() >> 28 & 1, 0);
     g.gp1(0x0400_0001);
@@ -262,25 +282,101 @@ fn block_dma_waits_while_the_fifo_is_full() {
 }
 
 /// The time a DMA waited is not counted twice: seen from the clock, the seven fills end
-/// seven fill-times after the DMA started, and running the returned cycles leaves the rest.
+/// seven fill-times after the first one's words arrived, and running the returned cycles
+/// leaves the rest.
 #[test]
 fn dma_wait_is_not_counted_twice() {
     let fill = [0x0200_0000u32, 0, 0x0001_0010];
     let words: Vec<u32> = fill.iter().copied().cycle().take(21).collect();
     let mut g = quiet();
-    let fill_gpu = units_to_gpu(57.0);
     let cycles = g.dma_block_write(&words);
-    assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(7 * fill_gpu));
+    let done = cost::cpu_cycles(gpu_at_word(3) + cost::gpu_cycles(7.0 * cost::fill(16, 1)));
+    assert_eq!(g.cycles_until_next_event(), done);
     let mut done_at = None;
-    for t in 1..=gpu_to_cpu(7 * fill_gpu) + 1 {
+    for t in 1..=done + 1 {
         if g.run(1).drawing_done {
             done_at = Some(t);
             break;
         }
     }
-    assert_eq!(done_at, Some(gpu_to_cpu(7 * fill_gpu)));
+    assert_eq!(done_at, Some(done));
     // The DMA itself ended well before the drawing.
-    assert!(cycles < gpu_to_cpu(7 * fill_gpu));
+    assert!(cycles < done);
+}
+
+/// The DMA's own time overlaps the drawing: a 64x64 rectangle and six 16x1 fills by one
+/// DMA. The rectangle starts with its third word, while the DMA goes on; the FIFO holds
+/// words 4-19, so word 20 waits until the rectangle ends, and word 21 follows. Without the
+/// overlap, word 20 would wait for the whole rectangle after the DMA's first 20 cycles.
+#[test]
+fn block_dma_overlaps_the_drawing() {
+    let mut g = quiet();
+    g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
+    let mut words = vec![0x6000_00FF, 0, 0x0040_0040];
+    let fill = [0x0200_0000u32, 0, 0x0001_0010];
+    words.extend(fill.iter().copied().cycle().take(3 * 6));
+    let rect = cost::gpu_cycles(cost::RECTANGLE_SETUP + 64.0 * cost::ROW + 4096.0 * cost::PIXEL);
+    let cycles = g.dma_block_write(&words);
+    assert_eq!(cycles, cost::cpu_cycles(gpu_at_word(3) + rect) + 1);
+    // Everything ends after the rectangle and the six fills.
+    let fills = cost::gpu_cycles(6.0 * cost::fill(16, 1));
+    assert_eq!(
+        g.cycles_until_next_event(),
+        cost::cpu_cycles(gpu_at_word(3) + rect + fills)
+    );
+}
+
+/// A CPU store into a full FIFO waits for room: `gp0` returns the stall, the drawing side has
+/// run through it, and running the stall keeps the clock and the drawing in step.
+#[test]
+fn cpu_store_into_a_full_fifo_stalls() {
+    let mut g = quiet();
+    let fill = [0x0200_0000u32, 0, 0x0001_0010];
+    // The first fill starts at once; five more fill the FIFO to 15 words, the sixth's first
+    // word to 16.
+    for w in fill.iter().cycle().take(19) {
+        assert_eq!(g.gp0(*w), 0);
+    }
+    let fill_gpu = cost::gpu_cycles(cost::fill(16, 1));
+    // The next word waits for the first fill to end (and the second to leave the FIFO).
+    let stall = g.gp0(0);
+    assert_eq!(stall, cost::cpu_cycles(fill_gpu));
+    // A NOP takes no FIFO space and never waits (psx-spx "GPU Other Commands").
+    let mut nop = quiet();
+    for w in fill.iter().cycle().take(18) {
+        nop.gp0(*w);
+    }
+    assert_eq!(nop.gp0(0x0000_0000), 0);
+    // The stall's time, run through `run`, is not counted twice: the six complete fills
+    // end where they would have without it.
+    g.run(stall);
+    let left = cost::cpu_cycles(cost::gpu_cycles(6.0 * cost::fill(16, 1))) - stall;
+    assert!(g.cycles_until_next_event().abs_diff(left) <= 1);
+}
+
+/// GPUREAD by DMA: the GPU fetches the rectangle from VRAM at its own rate, and the DMA,
+/// faster, waits for the words.
+#[test]
+fn vram_to_cpu_dma_waits_for_the_fetch() {
+    let mut g = quiet();
+    // 64x64 = 2048 words.
+    g.gp0_words(&[0xC000_0000, 0, 0x0040_0040]);
+    let mut out = vec![0u32; 2048];
+    let cycles = g.dma_block_read(&mut out);
+    let fetch = cost::gpu_cycles(2048.0 * cost::READ_WORD);
+    // The last word is ready when the fetch ends, and the DMA takes it one cycle later at
+    // most.
+    let end = cost::cpu_cycles(fetch);
+    assert!(cycles >= end && cycles <= end + 1, "{cycles} vs {end}");
+    // A CPU reading slower than the fetch never waits.
+    let mut slow = quiet();
+    slow.gp0_words(&[0xC000_0000, 0, 0x0001_0010]);
+    let mut waits = 0;
+    for _ in 0..8 {
+        slow.run(10);
+        waits += slow.gpuread_timed().1;
+    }
+    assert_eq!(waits, 0);
 }
 
 /// GP1(01h) drops the FIFO's waiting words; GP1(00h) also ends the drawing in progress.
@@ -300,20 +396,22 @@ fn command_buffer_reset_empties_the_fifo() {
 
 proptest! {
     /// Any number of fills of any size by DMA: running to each predicted event ends the
-    /// drawing, reported exactly once, after the sum of the fills' times; the GPU is then
-    /// ready for commands and DMA blocks again.
+    /// drawing, reported exactly once, after the first fill's words and the sum of the
+    /// fills' times; the GPU is then ready for commands and DMA blocks again.
     #[test]
     fn fills_by_dma_end_when_predicted(sizes in prop::collection::vec((1u32..64, 1u32..64), 1..40)) {
         let mut words = Vec::new();
-        let mut total_gpu = 0u32;
+        let mut total = 0.0;
         for &(w, h) in &sizes {
             words.extend_from_slice(&[0x0200_0000, 0, h << 16 | w]);
-            let width = (w + 15) & !15;
-            total_gpu += units_to_gpu(46.0 + (h * (width / 8 + 9)) as f64);
+            total += cost::fill((w + 15) & !15, h);
         }
         let mut g = quiet();
         g.dma_block_write(&words);
-        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(total_gpu));
+        prop_assert_eq!(
+            g.cycles_until_next_event(),
+            cost::cpu_cycles(gpu_at_word(3) + cost::gpu_cycles(total))
+        );
         let mut done = 0;
         for _ in 0..4 {
             let n = g.cycles_until_next_event();

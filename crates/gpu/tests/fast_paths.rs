@@ -16,6 +16,8 @@
 use gpu::{Gpu, Vram};
 use proptest::prelude::*;
 
+#[path = "support/cost.rs"]
+mod cost;
 #[path = "support/model.rs"]
 mod model;
 #[path = "support/pixel.rs"]
@@ -185,17 +187,6 @@ fn difference(got: &Vram, want: &Vram, background: &Vram) -> String {
     }
 }
 
-/// Draw units (half CPU cycles) to GPU cycles, rounded up: the NTSC GPU clock is 11/7 of
-/// the CPU clock (docs/hardware/timing.md §1), so a unit is 11/14 GPU cycle.
-fn units_to_gpu(units: f64) -> u32 {
-    (units * 11.0 / 14.0 - 1e-9).ceil() as u32
-}
-
-/// GPU cycles to CPU cycles, rounded up (7/11).
-fn gpu_to_cpu(gpu: u32) -> u32 {
-    (gpu as f64 * 7.0 / 11.0 - 1e-9).ceil() as u32
-}
-
 /// Mostly near the drawing area, sometimes far enough to hit the size drop and the 11-bit
 /// wrap.
 fn coordinate() -> impl Strategy<Value = i32> {
@@ -290,7 +281,8 @@ proptest! {
     /// drawn pixel is non-zero: the pixels of the §3 model, only on the lines 480i drawing
     /// keeps (interlaced 480-line mode with E1h bit 10 clear skips the lines whose bit 0 is
     /// that of the display start line plus the field, §8), and a drawing time of the
-    /// triangle set-up plus one unit per pixel drawn (docs/emulator.md, "Drawing time").
+    /// triangle set-up, the rows walked and the pixels drawn (docs/emulator.md, "Drawing
+    /// time").
     #[test]
     fn flat_triangles_draw_and_count_the_model_pixels(
         pts in prop::collection::vec((coordinate(), coordinate()), 3),
@@ -314,6 +306,8 @@ proptest! {
         let mut expected = Vram::new();
         let c = rgb8(rgb).map(|c| c as i64);
         let v = [0, 1, 2].map(|i| env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0]));
+        let keep = |y: i64| interlace.is_none_or(|start| y.rem_euclid(2) != start as i64);
+        let rows = model::rows(&v, env.clip(), keep) as f64;
         let mut drawn = 0u32;
         for p in model::triangle(v, env.clip()) {
             if interlace.is_some_and(|start| p.y.rem_euclid(2) == start as i64) {
@@ -324,15 +318,15 @@ proptest! {
         }
         let vram = g.vram();
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
-        let units = 82.0 + drawn as f64;
-        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
+        let time = cost::TRIANGLE_SETUP + rows * cost::ROW + drawn as f64 * cost::PIXEL;
+        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
     }
 
     /// Gouraud-shaded opaque triangles without the E6h mask check (GP0 30h, and 31h whose
     /// raw bit an untextured polygon ignores), dithered under E1h bit 9, on a cleared VRAM
     /// with the mask bit set: the pixels and §3.6 colours of the model, only on the lines
-    /// 480i drawing keeps (§8), and a drawing time of the set-up, the Gouraud set-up and
-    /// two units per pixel drawn (docs/emulator.md, "Drawing time").
+    /// 480i drawing keeps (§8), and a drawing time of the set-up, the Gouraud set-up, the
+    /// rows walked and the pixels drawn (docs/emulator.md, "Drawing time").
     #[test]
     fn gouraud_triangles_draw_and_count_the_model_pixels(
         pts in prop::collection::vec((coordinate(), coordinate(), any::<[u8; 3]>()), 3),
@@ -362,6 +356,8 @@ proptest! {
             let c = rgb8(pts[i].2).map(|c| c as i64);
             env.vertex(pts[i].0, pts[i].1, [c[0], c[1], c[2], 0, 0])
         });
+        let keep = |y: i64| interlace.is_none_or(|start| y.rem_euclid(2) != start as i64);
+        let rows = model::rows(&v, env.clip(), keep) as f64;
         let mut drawn = 0u32;
         for p in model::triangle(v, env.clip()) {
             if interlace.is_some_and(|start| p.y.rem_euclid(2) == start as i64) {
@@ -374,8 +370,11 @@ proptest! {
         }
         let vram = g.vram();
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
-        let units = 82.0 + 288.0 + 2.0 * drawn as f64;
-        prop_assert_eq!(g.cycles_until_next_event(), gpu_to_cpu(units_to_gpu(units)));
+        let time = cost::TRIANGLE_SETUP
+            + cost::GOURAUD_SETUP
+            + rows * cost::ROW
+            + drawn as f64 * (cost::PIXEL + cost::SHADED_PIXEL);
+        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
     }
 
     /// Flat quads whose vertices are the corners of an axis-aligned rectangle, in every

@@ -167,15 +167,18 @@ fn render_from_sync_block_dma_direction_2() {
 }
 
 /// Direction 3: bit 25 follows bit 27 (psx-spx "GPU Status Register"; the printout of
-/// ps1-tests gpu/gpustat lists the same rule).
+/// ps1-tests gpu/gpustat lists the same rule). While the GPU fetches the rectangle for
+/// GPUREAD it is executing a command: bit 26 is clear (psx-spx "Ready Bits"; docs/emulator.md,
+/// "Drawing time"), and the DMA waits for the word (its fetch: 570/256 CPU cycles a word,
+/// 3 GPU cycles rounded down, 2 CPU cycles rounded up).
 #[test]
 fn direction_3_requests_while_vram_data_waits() {
     let mut g = gpu();
     g.gp1(0x0400_0003);
     assert_eq!(bits(g.gpustat()), [0, 1, 0, 1, 3]);
     g.gp0_words(&[0xC000_0000, 0, 0x0001_0002]);
-    assert_eq!(bits(g.gpustat()), [1, 1, 1, 1, 3]);
+    assert_eq!(bits(g.gpustat()), [1, 0, 1, 1, 3]);
     let mut out = [0u32; 1];
-    assert_eq!(g.dma_block_read(&mut out), 1);
+    assert_eq!(g.dma_block_read(&mut out), 2);
     assert_eq!(bits(g.gpustat()), [0, 1, 0, 1, 3]);
 }

@@ -529,11 +529,13 @@ fn textured_triangle_4bit_with_transparent_texel() {
     }
 }
 
-/// The per-pixel §3 triangle model, shared with `fast_paths.rs` (see the file for how it is
-/// derived from the fact sheet).
+#[path = "support/cost.rs"]
+mod cost;
 #[path = "support/quiet.rs"]
 mod quiet;
 
+/// The per-pixel §3 triangle model, shared with `fast_paths.rs` (see the file for how it is
+/// derived from the fact sheet).
 #[path = "support/model.rs"]
 mod model;
 
@@ -765,8 +767,8 @@ proptest! {
     /// Flat lines (GP0 40h; 41h, 44h and 45h set bits a line ignores; 42h semi-transparent)
     /// with both endpoints inside the drawing area, or on or next to its edges, equal the §4
     /// model, with the mask bit E6h sets (docs/hardware/gpu.md §7) on every point and the
-    /// E1h dither (lines dither whenever it is set, §6), and cost 16 draw units plus 2 per step along
-    /// the major axis (docs/emulator.md, "Drawing time").
+    /// E1h dither (lines dither whenever it is set, §6), and cost 8 CPU cycles plus 1 per step
+    /// along the major axis (docs/emulator.md, "Drawing time").
     #[test]
     fn flat_lines_inside_the_area_match_model(
         ends in prop::collection::vec((0i32..330, 0i32..230, any::<[u8; 3]>()), 2),
@@ -819,9 +821,8 @@ proptest! {
         }
         prop_assert!(*g.vram() == expected, "VRAM differs from the model");
         let steps = (ends[1].0 - ends[0].0).abs().max((ends[1].1 - ends[0].1).abs());
-        let gpu_cycles = ((16 + 2 * steps) as f64 * 11.0 / 14.0 - 1e-9).ceil();
-        let cpu_cycles = (gpu_cycles * 7.0 / 11.0 - 1e-9).ceil() as u32;
-        prop_assert_eq!(g.cycles_until_next_event(), cpu_cycles);
+        let time = cost::LINE_SETUP + steps as f64 * cost::LINE_STEP;
+        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
     }
 }
 

@@ -70,6 +70,7 @@ impl Walk {
     /// What stepping the points costs: every point, drawn or not.
     fn count(&self) -> DrawCount {
         DrawCount {
+            rows: 0,
             pixels: self.k as u32 + 1,
             pairs: 0,
         }

@@ -21,6 +21,10 @@ use crate::{VRAM_LEN, Vram};
 /// drawing-time model (docs/emulator.md, "Drawing time, FIFO and DMA").
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct DrawCount {
+    /// Rows walked inside the drawing area: for a triangle the rows between its top and
+    /// bottom vertex, for a rectangle its rows, each counted whether or not its span is
+    /// empty after the horizontal clip (lines: 0).
+    pub rows: u32,
     /// Pixels drawn (lines: points stepped through, drawn or clipped).
     pub pixels: u32,
     /// Pixel pairs the spans touch, counted on even-aligned pairs: what a read-modify-write
@@ -874,7 +878,10 @@ pub(crate) fn draw_tiled_quad(
         let row = ((y & 511) as usize) * crate::VRAM_WIDTH;
         fill_span(vram, row, x_start, x_end, color, line);
     });
-    drawn.pixels = (x_end - x_start) as u32 * rows.count(y_start, y_end);
+    let row_count = rows.count(y_start, y_end);
+    drawn.pixels = (x_end - x_start) as u32 * row_count;
+    // Each of the two triangles spans every row of the rectangle.
+    drawn.rows = 2 * row_count;
     Some(drawn)
 }
 

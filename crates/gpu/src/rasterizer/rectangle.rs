@@ -39,6 +39,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
     row_count.span(x_start, x_end, BLEND || MASK_CHECK);
     let rows = filter.count(y_start, y_end);
     let drawn = DrawCount {
+        rows,
         pixels: row_count.pixels * rows,
         pairs: row_count.pairs * rows,
     };

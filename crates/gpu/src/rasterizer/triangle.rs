@@ -262,6 +262,7 @@ pub(super) fn draw_flat(
         if first >= last {
             continue;
         }
+        drawn.rows += rows.count(first, last);
         let walk = FlatRows {
             y: first,
             last,
@@ -597,6 +598,7 @@ pub(super) fn draw_inline<
         if first >= last {
             continue;
         }
+        drawn.rows += rows.count(first, last);
         let (mut l, mut r) = (left.at(first), right.at(first));
         let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
         if groups {

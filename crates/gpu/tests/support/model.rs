@@ -51,6 +51,32 @@ fn edge(p: (i64, i64), q: (i64, i64), r: (i64, i64)) -> i64 {
     (q.0 - p.0) * (r.1 - p.1) - (q.1 - p.1) * (r.0 - p.0)
 }
 
+/// The rows a triangle walks inside `clip` (x0, y0, x1, y1 inclusive), for the drawing
+/// time (docs/emulator.md, "Drawing time"): those from its top vertex down to, not
+/// including, its bottom vertex, inside the clip's rows and kept by `keep`; none when it is
+/// dropped (size limit, zero area, or a bounding box outside the clip; §3.2, §3.6).
+#[allow(dead_code)]
+pub fn rows(input: &[V; 3], clip: (i64, i64, i64, i64), keep: impl Fn(i64) -> bool) -> u32 {
+    let v = [0, 1, 2].map(|i| (sext11(input[i].x), sext11(input[i].y)));
+    let xs = v.map(|p| p.0);
+    let ys = v.map(|p| p.1);
+    let (min_x, max_x) = (*xs.iter().min().unwrap(), *xs.iter().max().unwrap());
+    let (min_y, max_y) = (*ys.iter().min().unwrap(), *ys.iter().max().unwrap());
+    let outside = max_x < clip.0 || min_x > clip.2 || max_y < clip.1 || min_y > clip.3;
+    let empty = clip.0 > clip.2 || clip.1 > clip.3;
+    if max_x - min_x >= 1024
+        || max_y - min_y >= 512
+        || edge(v[0], v[1], v[2]) == 0
+        || outside
+        || empty
+    {
+        return 0;
+    }
+    (min_y.max(clip.1)..max_y.min(clip.3 + 1))
+        .filter(|&y| keep(y))
+        .count() as u32
+}
+
 /// Every pixel the triangle draws inside `clip` (x0, y0, x1, y1 inclusive).
 pub fn triangle(input: [V; 3], clip: (i64, i64, i64, i64)) -> Vec<Px> {
     let v: Vec<V> = input
