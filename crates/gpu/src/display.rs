@@ -155,10 +155,11 @@ impl Gpu {
     }
 
     /// GP1(01h): drop any partial packet and transfer, and the FIFO's waiting words; the
-    /// command executing finishes.
+    /// command executing finishes, and so does the first triangle of a quad the GPU has
+    /// reached ([`Gpu::cut_gp0_input`]).
     fn reset_command_buffer(&mut self) {
         self.drawing.clear_fifo();
-        self.gp0 = Default::default();
+        self.cut_gp0_input();
         self.read = Default::default();
     }
 

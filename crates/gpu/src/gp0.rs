@@ -535,6 +535,28 @@ impl Gpu {
         n
     }
 
+    /// GP0 input is cut short (GP1(01h), GP1(00h)). A quad is drawn as two triangles, the
+    /// first as soon as its words are in and the GPU reaches it (docs/gpu.md, "A quad cut
+    /// short"): when the words of a quad's first triangle have all arrived and nothing before
+    /// them is still drawing or queued, that triangle is drawn now, its texpage attribute
+    /// applied, and its time spent; the rest of the packet is dropped with the input.
+    pub(crate) fn cut_gp0_input(&mut self) {
+        let cmd = self.gp0.buf[0];
+        let first_triangle = cmd & !(1 << 27);
+        if let (Mode::Command, Kind::Polygon(op)) = (self.gp0.mode, Command::of(cmd).kind)
+            && op.quad
+            && self.gp0.len >= Command::of(first_triangle).words
+            && self.drawing.idle()
+        {
+            let mut packet = self.gp0.buf;
+            packet[0] = first_triangle;
+            let units = self.polygon(PolygonOp { quad: false, ..op }, &packet);
+            self.drawing
+                .complete(units, clock_ratio(self.timing.standard()));
+        }
+        self.gp0 = Gp0State::default();
+    }
+
     /// The GP0 input in progress, if any: a partial packet, an unfinished CPU-to-VRAM
     /// transfer or an unterminated polyline. `None` when the next word starts a new command.
     pub fn pending_input(&self) -> Option<PendingInput> {

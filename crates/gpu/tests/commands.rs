@@ -217,6 +217,89 @@ fn command_buffer_reset() {
     assert_eq!(px(&g, 0, 0), 0x1F);
 }
 
+/// A quad is drawn as two triangles, the first as soon as its words are in and the GPU
+/// reaches it (docs/gpu.md, "A quad cut short"): GP1(01h) after the first triangle's words
+/// of an idle GPU leaves that triangle drawn, as the same words sent as a triangle draw it,
+/// and the second triangle is not drawn.
+#[test]
+fn quad_cut_after_its_first_triangle() {
+    // F4: command and three vertices are the first triangle (an F3's words).
+    let f4 = [0x2800_00FF, pos(0, 0), pos(40, 0), pos(0, 30), pos(40, 30)];
+    let mut cut = Gpu::new();
+    cut.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    cut.gp0_words(&f4[..4]);
+    cut.gp1(0x0100_0000);
+    let mut triangle = Gpu::new();
+    triangle.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    triangle.gp0_words(&[0x2000_00FF, pos(0, 0), pos(40, 0), pos(0, 30)]);
+    assert!(cut.vram() == triangle.vram(), "first triangle drawn");
+    assert_ne!(px(&cut, 1, 1), 0);
+    assert_eq!(px(&cut, 39, 29), 0, "second triangle not drawn");
+    // The cut ends the packet: the next word starts a command.
+    cut.gp0_words(&[0x0200_001F, pos(0, 100), 0x0001_0010]);
+    assert_ne!(px(&cut, 0, 100), 0);
+    // One word fewer: nothing is drawn.
+    let mut short = Gpu::new();
+    short.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    short.gp0_words(&f4[..3]);
+    short.gp1(0x0100_0000);
+    assert!(short.vram().as_slice().iter().all(|&p| p == 0));
+    // GP1(00h) cuts the same way (and then resets the drawing environment).
+    let mut reset = Gpu::new();
+    reset.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    reset.gp0_words(&f4[..4]);
+    reset.gp1(0x0000_0000);
+    assert!(reset.vram() == triangle.vram());
+}
+
+/// A textured quad cut after its first triangle applies that triangle's texpage attribute
+/// (vertex 1's UV word, docs/hardware/gpu.md §2) to the draw mode, as the triangle does.
+#[test]
+fn quad_cut_applies_the_texpage_of_its_first_triangle() {
+    // FT4 with texpage 118h (page 512,256, 15-bit): its first triangle is FT3's 7 words.
+    let ft4 = [
+        0x2C80_8080,
+        pos(0, 0),
+        0,
+        pos(40, 0),
+        0x0118_0010,
+        pos(0, 30),
+        0x0000_1000,
+        pos(40, 30),
+        0x0000_1010,
+    ];
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    g.gp0_words(&ft4[..7]);
+    g.gp1(0x0100_0000);
+    // GPUSTAT bits 0-8: page X 512 / 64 = 8, Y 256 (bit 4), 15-bit (bits 7-8 = 2).
+    assert_eq!(g.gpustat() & 0x1FF, 8 | 1 << 4 | 2 << 7);
+}
+
+/// A GPU still drawing has not reached the quad: its words wait in the FIFO, and GP1(01h)
+/// drops them with the triangle undrawn and the draw mode unchanged.
+#[test]
+fn quad_cut_while_the_gpu_is_busy_draws_nothing() {
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
+    // A 256x256 rectangle keeps the GPU busy.
+    g.gp0_words(&[0x6000_00FF, pos(0, 200), 0x0100_0100]);
+    let before = g.vram().clone();
+    let stat = g.gpustat() & 0x1FF;
+    g.gp0_words(&[
+        0x2C80_8080,
+        pos(300, 0),
+        0,
+        pos(340, 0),
+        0x0118_0010,
+        pos(300, 30),
+        0x0000_1000,
+    ]);
+    g.gp1(0x0100_0000);
+    assert!(*g.vram() == before);
+    assert_eq!(g.gpustat() & 0x1FF, stat);
+}
+
 /// Ordering table: packets come out far (high index) first; packets at one index come out
 /// most-recent-first; the walk ends at the terminator.
 #[test]
