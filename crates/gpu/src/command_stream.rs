@@ -61,6 +61,12 @@ pub fn parse(text: &str) -> Result<Vec<StreamCommand>, StreamError> {
         let port = match port.to_ascii_lowercase().as_str() {
             "gp0" => Port::Gp0,
             "gp1" => Port::Gp1,
+            other if crate::bus::is_directive(other) => {
+                return Err(err(alloc::format!(
+                    "`{other}` is a timing directive: this stream is a timed stream \
+                     (docs/formats.md, \"Timed streams\")"
+                )));
+            }
             other => {
                 return Err(err(alloc::format!(
                     "unknown port `{other}` (expected gp0 or gp1)"
@@ -69,21 +75,7 @@ pub fn parse(text: &str) -> Result<Vec<StreamCommand>, StreamError> {
         };
         let mut words = Vec::new();
         for field in fields {
-            let digits = field
-                .strip_prefix("0x")
-                .or_else(|| field.strip_prefix("0X"))
-                .unwrap_or(field);
-            if digits.is_empty()
-                || digits.len() > 8
-                || !digits.bytes().all(|b| b.is_ascii_hexdigit())
-            {
-                return Err(err(alloc::format!(
-                    "`{field}` is not a 32-bit hex word (1 to 8 hex digits)"
-                )));
-            }
-            let word = u32::from_str_radix(digits, 16)
-                .map_err(|_| err(alloc::format!("`{field}` is not a hex word")))?;
-            words.push(word);
+            words.push(parse_word(field).map_err(err)?);
         }
         match (port, words.len()) {
             (_, 0) => return Err(err("missing word after the port".to_string())),
@@ -112,6 +104,20 @@ pub struct RunSummary {
     /// `Some` when the stream ended mid-packet, mid CPU-to-VRAM transfer or inside an
     /// unterminated polyline.
     pub unfinished: Option<Unfinished>,
+}
+
+/// One 32-bit word: 1 to 8 hex digits, optionally prefixed `0x`.
+pub(crate) fn parse_word(field: &str) -> Result<u32, String> {
+    let digits = field
+        .strip_prefix("0x")
+        .or_else(|| field.strip_prefix("0X"))
+        .unwrap_or(field);
+    if digits.is_empty() || digits.len() > 8 || !digits.bytes().all(|b| b.is_ascii_hexdigit()) {
+        return Err(alloc::format!(
+            "`{field}` is not a 32-bit hex word (1 to 8 hex digits)"
+        ));
+    }
+    u32::from_str_radix(digits, 16).map_err(|_| alloc::format!("`{field}` is not a hex word"))
 }
 
 /// Send parsed commands to a GPU in order; report input the stream left unfinished, with the
@@ -163,6 +169,10 @@ mod tests {
         assert_eq!(parse("gp0").unwrap_err().line, 1);
         assert_eq!(parse("gp0 1\n\ngp1 1 2").unwrap_err().line, 3);
         assert_eq!(parse("gp0 123456789").unwrap_err().line, 1);
+        // A timed stream's directive is named as such.
+        let e = parse("gp0 1\nwait 28\n").unwrap_err();
+        assert_eq!(e.line, 2);
+        assert!(e.message.contains("timing directive"), "{}", e.message);
     }
 
     #[test]

@@ -28,6 +28,7 @@
 
 extern crate alloc;
 
+pub mod bus;
 mod color;
 pub mod command;
 pub mod command_stream;

@@ -1,7 +1,7 @@
 //! DMA channel 2 (block and linked-list mode) and channel 6 (OTC), drawing time, the FIFO
 //! and the GPU interrupt. Console expectations come from ps1-tests `dma/otc-test` and
-//! `dma/chain-looping` (main.cpp and psx.log; MIT, Copyright (c) 2020 Jakub Czekański,
-//! fixtures/gpu/LICENSE-ps1-tests) and psx-spx "DMA Channels"; cycle
+//! `dma/chain-looping` and `dma/chopping` (main.cpp and psx.log; MIT, Copyright (c) 2020
+//! Jakub Czekański, fixtures/gpu/LICENSE-ps1-tests) and psx-spx "DMA Channels"; cycle
 //! figures are worked out here from the cost table in docs/emulator.md with floating-point
 //! clock ratios.
 
@@ -425,5 +425,63 @@ proptest! {
         prop_assert_eq!(done, 1);
         prop_assert_eq!(g.gpustat() >> 26 & 1, 1);
         prop_assert_eq!(g.gpustat() >> 28 & 1, 1);
+    }
+}
+
+// ---- DMA2 slice and burst mode to GP0: ps1-tests dma/chopping ----
+
+/// `dma/chopping`: a 64x64 CPU-to-VRAM transfer (8192 bytes) by DMA2 in sync mode 1 with
+/// block sizes 1 to 16, 32, 64 and 128, and in sync mode 0, timed from the CHCR write to
+/// the end of `waitForChannel` (psx.log, "took N CPU cycles"). The controller's time per
+/// block, `gpu::bus::DMA_BLOCK_CYCLES`, comes from the block size 1 row; the other rows
+/// check it together with the GPU's CPU-to-VRAM rate (two pixels at the calibrated
+/// per-pixel cost, docs/emulator.md, "Drawing time").
+#[test]
+fn chopping_slice_mode_times() {
+    let console: [(Option<u32>, u64); 20] = [
+        (Some(1), 22819),
+        (Some(2), 12508),
+        (Some(3), 9116),
+        (Some(4), 7309),
+        (Some(5), 6297),
+        (Some(6), 5650),
+        (Some(7), 5131),
+        (Some(8), 4790),
+        (Some(9), 4509),
+        (Some(10), 4346),
+        (Some(11), 4099),
+        (Some(12), 4005),
+        (Some(13), 3895),
+        (Some(14), 3758),
+        (Some(15), 3640),
+        (Some(16), 3607),
+        (Some(32), 2998),
+        (Some(64), 2662),
+        (Some(128), 2471),
+        (None, 2196),
+    ];
+    for (block, took) in console {
+        // `beginCpuToVramTransfer`: GP1(01h), DrawSync, the CPU2VRAM packet by DrawPrim,
+        // GP1(04h) = 2; then the BCR (block size, 8192 / size / 4 blocks) and the timed
+        // CHCR write and `waitForChannel`.
+        let words = match block {
+            Some(n) => 2048 / n * n,
+            None => 2048,
+        };
+        let mode = block.map_or("burst".to_string(), |n| n.to_string());
+        let text = format!(
+            "gp1 01000000\ngp1 04000000\ngp0 a0000000 0 00400040\ngp1 04000002\n\
+             dma-block {mode}\ntimer\ncpu 4\ndma 0*{words}\ncpu 8\nreport took\n"
+        );
+        let stream = gpu::bus::parse(&text).unwrap();
+        let mut g = Gpu::new();
+        let run = gpu::bus::run(&mut g, &stream).unwrap();
+        let model = run.reports[0].cycles;
+        let ratio = model as f64 / took as f64;
+        println!("block {mode}: model {model}, console {took}, {ratio:.3}x");
+        assert!(
+            (0.9..=1.1).contains(&ratio),
+            "block {mode}: model {model}, console {took}"
+        );
     }
 }
