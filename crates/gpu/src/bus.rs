@@ -24,7 +24,7 @@ use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 
 use crate::Gpu;
-use crate::command_stream::{StreamError, parse_word};
+use crate::command_stream::{StreamError, Unfinished, parse_word};
 
 /// CPU cycles of a store to GP0 or GP1 (a store instruction; the write queue absorbs it).
 pub const STORE_CYCLES: u32 = 1;
@@ -315,6 +315,9 @@ pub struct TimedRun {
     pub stall_cycles: u64,
     /// What the `report` lines noted, in order.
     pub reports: Vec<Report>,
+    /// `Some` when the stream ended mid-packet, mid CPU-to-VRAM transfer or inside an
+    /// unterminated polyline, with the line of the word that started it.
+    pub unfinished: Option<Unfinished>,
 }
 
 /// The clock of a run.
@@ -328,6 +331,8 @@ struct Player<'a> {
     block_size: Option<u32>,
     block: Vec<u32>,
     reports: Vec<Report>,
+    /// Line of the GP0 word that started the input in progress.
+    input_line: usize,
 }
 
 impl Player<'_> {
@@ -384,6 +389,9 @@ impl Player<'_> {
             self.poll(line, request, 1)?;
             self.advance(DMA_BLOCK_CYCLES);
         }
+        if !read && self.gpu.pending_input().is_none() {
+            self.input_line = line;
+        }
         let n = u32::try_from(self.block.len()).unwrap_or(u32::MAX);
         let cycles = if read {
             self.gpu.dma_block_read(&mut self.block)
@@ -406,6 +414,9 @@ impl Player<'_> {
             match &c.op {
                 Op::Gp0(words) => {
                     for w in words.iter() {
+                        if self.gpu.pending_input().is_none() {
+                            self.input_line = c.line;
+                        }
                         self.advance(STORE_CYCLES);
                         let stall = self.gpu.gp0(w);
                         self.stall(stall);
@@ -478,6 +489,7 @@ pub fn run(gpu: &mut Gpu, commands: &[TimedCommand]) -> Result<TimedRun, StreamE
         block_size: Some(DMA_BLOCK_WORDS),
         block: Vec::new(),
         reports: Vec::new(),
+        input_line: 0,
     };
     p.play(commands)?;
     let stream_cycles = p.now;
@@ -488,12 +500,17 @@ pub fn run(gpu: &mut Gpu, commands: &[TimedCommand]) -> Result<TimedRun, StreamE
         }
         p.advance(left);
     }
+    let unfinished = p.gpu.pending_input().map(|pending| Unfinished {
+        pending,
+        line: p.input_line,
+    });
     Ok(TimedRun {
         stream_cycles,
         gpu_cycles: p.now,
         hblanks: p.hblanks,
         stall_cycles: p.stalls,
         reports: p.reports,
+        unfinished,
     })
 }
 

@@ -63,7 +63,7 @@ pub fn parse(text: &str) -> Result<Vec<StreamCommand>, StreamError> {
             "gp1" => Port::Gp1,
             other if crate::bus::is_directive(other) => {
                 return Err(err(alloc::format!(
-                    "`{other}` is a timing directive: this stream is a timed stream \
+                    "`{other}` is a timing directive, read by gpu::bus::parse \
                      (docs/formats.md, \"Timed streams\")"
                 )));
             }

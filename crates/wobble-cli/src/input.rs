@@ -25,7 +25,15 @@ pub fn read_text(path: &Path, what: &str) -> Result<String, String> {
 /// line.
 pub fn read_command_stream(path: &Path) -> Result<Vec<StreamCommand>, String> {
     let text = read_text(path, COMMAND_STREAM)?;
-    command_stream::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+    command_stream::parse(&text).map_err(|e| {
+        let timed = e.message.contains("timing directive");
+        let hint = if timed {
+            "; `wobble replay --timing` reads timed streams"
+        } else {
+            ""
+        };
+        format!("{}: {e}{hint}", path.display())
+    })
 }
 
 /// Read a raw VRAM file (docs/formats.md, "Raw VRAM").

@@ -5,7 +5,7 @@
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gpu::{DisplayArea, Gpu, command_stream};
+use gpu::{CPU_CLOCK_HZ, DisplayArea, Gpu, VideoStandard, command_stream};
 use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -137,6 +137,32 @@ struct ReplayArgs {
     /// 5-bit to 8-bit conversion (`shift` reproduces the fixtures' console captures).
     #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
     expand: ExpandArg,
+    /// Also print the time the stream takes on a console: CPU cycles, hblanks (what timer 1
+    /// counts) and milliseconds until the GPU has finished, and each `report` line. Accepts
+    /// timed streams (docs/formats.md, "Timed streams").
+    #[arg(long)]
+    timing: bool,
+    /// The console whose clocks time the stream.
+    #[arg(long, value_enum, default_value_t = ConsoleArg::Ntsc, requires = "timing")]
+    console: ConsoleArg,
+}
+
+/// A console region, as `--console` takes it.
+#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+enum ConsoleArg {
+    /// NTSC console: GPU clock 11/7 of the CPU clock.
+    Ntsc,
+    /// PAL console: GPU clock 53.203425 MHz.
+    Pal,
+}
+
+impl From<ConsoleArg> for VideoStandard {
+    fn from(c: ConsoleArg) -> VideoStandard {
+        match c {
+            ConsoleArg::Ntsc => VideoStandard::Ntsc,
+            ConsoleArg::Pal => VideoStandard::Pal,
+        }
+    }
 }
 
 #[derive(clap::Args)]
@@ -260,6 +286,39 @@ fn unfinished_text(pending: gpu::PendingInput) -> String {
     }
 }
 
+/// Milliseconds in `cycles` CPU cycles.
+fn millis(cycles: u64) -> f64 {
+    cycles as f64 * 1000.0 / CPU_CLOCK_HZ as f64
+}
+
+/// What `replay --timing` prints: the GPU time of the whole stream, then each report.
+fn timing_text(t: &gpu::bus::TimedRun, console: ConsoleArg) -> String {
+    let console = match console {
+        ConsoleArg::Ntsc => "NTSC",
+        ConsoleArg::Pal => "PAL",
+    };
+    let mut s = format!(
+        "GPU time: {} CPU cycles, {} hblanks, {:.3} ms ({console} console)\n\
+         stream: {} CPU cycles, {} of them waiting on the GPU\n",
+        t.gpu_cycles,
+        t.hblanks,
+        millis(t.gpu_cycles),
+        t.stream_cycles,
+        t.stall_cycles,
+    );
+    for r in &t.reports {
+        s += &format!(
+            "report {:?} (line {}): {} hblanks, {} CPU cycles, {:.3} ms\n",
+            r.name,
+            r.line,
+            r.hblanks,
+            r.cycles,
+            millis(r.cycles)
+        );
+    }
+    s
+}
+
 fn replay(args: &ReplayArgs) -> Result<()> {
     let path = args
         .output
@@ -278,10 +337,25 @@ fn replay(args: &ReplayArgs) -> Result<()> {
     }
     let image_out = output::open(&path)?;
     let raw_out = args.raw.as_deref().map(output::open).transpose()?;
-    let commands = input::read_command_stream(&args.stream)?;
-    let mut gpu = Gpu::new();
-    let summary = command_stream::run(&mut gpu, &commands);
-    if let Some(u) = summary.unfinished {
+    let mut gpu = Gpu::with_standard(args.console.into());
+    let unfinished = if args.timing {
+        let text = input::read_text(&args.stream, input::COMMAND_STREAM)?;
+        let in_file = |e: command_stream::StreamError| format!("{}: {e}", args.stream.display());
+        let stream = gpu::bus::parse(&text).map_err(in_file)?;
+        let timed = gpu::bus::run(&mut gpu, &stream).map_err(in_file)?;
+        let report = timing_text(&timed, args.console);
+        // Standard output may carry the image or the raw VRAM: the times then go to stderr.
+        if output::is_stdout(&path) || args.raw.as_deref().is_some_and(output::is_stdout) {
+            eprint!("{report}");
+        } else {
+            print!("{report}");
+        }
+        timed.unfinished
+    } else {
+        let commands = input::read_command_stream(&args.stream)?;
+        command_stream::run(&mut gpu, &commands).unfinished
+    };
+    if let Some(u) = unfinished {
         eprintln!(
             "warning: {}: the stream ends {} (started at line {})",
             args.stream.display(),

@@ -419,3 +419,75 @@ fn replay_reproduces_every_capture_with_expand_shift() {
         }
     }
 }
+
+/// `replay --timing` on a plain stream: two environment words and a 320x240 fill, stored by
+/// the CPU word by word (one cycle each); the fill starts with the fifth store and takes
+/// 23 + 240 x (320 / 16 + 1870 / 256) CPU cycles (docs/emulator.md, "Drawing time"); the GPU
+/// time is printed in CPU cycles, hblanks and milliseconds (33.8688 MHz).
+#[test]
+fn replay_timing_prints_the_gpu_time() {
+    let stream = tmp("timing-fill.gpu");
+    std::fs::write(&stream, "gp0 e3000000 e407ffff\ngp0 02000000 0 00f00140\n").unwrap();
+    let o = wobble(&[
+        "replay",
+        "--timing",
+        stream.to_str().unwrap(),
+        "-o",
+        tmp("timing-fill.png").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let fill: f64 = 23.0 + 240.0 * (20.0 + 1870.0 / 256.0);
+    let gpu = (fill * 11.0 / 7.0).floor();
+    let expected = 5.0 + (gpu * 7.0 / 11.0).ceil();
+    let line = out.lines().next().unwrap();
+    let cycles: f64 = line
+        .strip_prefix("GPU time: ")
+        .and_then(|l| l.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{out}"));
+    assert!((cycles - expected).abs() <= 1.0, "{out}");
+    let ms = format!("{:.3} ms", cycles * 1000.0 / 33_868_800.0);
+    assert!(line.contains(&ms) && line.contains("NTSC"), "{out}");
+    // About 3 hblanks of 2171.9 CPU cycles each.
+    assert!(line.contains(" 3 hblanks,"), "{out}");
+}
+
+/// `replay --timing` on the timed stream of ps1-tests gpu/bandwidth's FillScreen workload
+/// prints what timer 1 counted; the console counted 1216 hblanks (psx.log, f727802).
+#[test]
+fn replay_timing_reports_a_timed_stream() {
+    let stream = root().join("fixtures/gpu/bandwidth/fill.gpu");
+    let o = wobble(&[
+        "replay",
+        "--timing",
+        stream.to_str().unwrap(),
+        "-o",
+        tmp("bandwidth-fill.png").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    let report = out
+        .lines()
+        .find(|l| l.starts_with("report \"FillScreen GP0(2)\""))
+        .unwrap_or_else(|| panic!("{out}"));
+    let hblanks: f64 = report
+        .split(": ")
+        .nth(1)
+        .and_then(|r| r.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{report}"));
+    assert!((hblanks / 1216.0 - 1.0).abs() < 0.1, "{report}");
+    // Without --timing the directives are refused, naming the flag.
+    let o = wobble(&[
+        "replay",
+        stream.to_str().unwrap(),
+        "-o",
+        tmp("bandwidth-fill2.png").to_str().unwrap(),
+    ]);
+    assert!(!o.status.success());
+    assert!(stderr(&o).contains("--timing"), "{}", stderr(&o));
+    // --console needs --timing.
+    let o = wobble(&["replay", "--console", "pal", stream.to_str().unwrap()]);
+    assert!(!o.status.success());
+}
