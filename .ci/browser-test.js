@@ -44,6 +44,7 @@ function check(cond, what) {
 
   const summary = await page.textContent("#summary");
   check(/\d+ commands, \d+ draws/.test(summary), "summary shows command and draw counts: " + summary);
+  check(/GPU time \d+ CPU cycles/.test(summary), "summary shows the GPU time: " + summary);
 
   // The page starts on the first draw; step forward and back.
   const first = await page.textContent("#detail h2");
@@ -72,6 +73,8 @@ function check(cond, what) {
   check((await page.$("#ba-img")) !== null, "before/after image shown");
   const imgOk = await page.$eval("#ba-img", (i) => i.complete && i.naturalWidth > 0);
   check(imgOk, "before/after image loaded from disk");
+  const time = await page.textContent("#time").catch(() => "");
+  check(/^\d+ CPU cycles/.test(time), "the draw's GPU time is shown: " + time);
 
   // Who wrote this pixel: find a pixel some command changed, click it on the final VRAM.
   const hit = await page.evaluate(() => {
@@ -108,6 +111,12 @@ function check(cond, what) {
   await page.waitForFunction(() => /transfers?|fill|copy|VRAM/.test(document.querySelector("#rows tbody").textContent) || document.querySelector("#page-info").textContent.includes("(0 commands)"));
   const kinds = await page.$$eval("#rows tbody tr", (rows) => rows.map((r) => r.className));
   check(kinds.every((k) => k.includes("k-t")), `filter shows only transfers (${kinds.length} rows)`);
+  // Slowest first: the time column descends.
+  await page.selectOption("#filter", "slow");
+  await page.waitForFunction(() => document.querySelector("#rows tbody tr td.num") !== null);
+  const times = await page.$$eval("#rows tbody tr td.num", (cells) => cells.map((c) => Number(c.textContent)));
+  check(times.length > 0 && times.every((t, i) => t > 0 && (i === 0 || t <= times[i - 1])),
+    `slowest first lists commands by GPU time (${times.slice(0, 3).join(", ")}, ...)`);
   await page.selectOption("#filter", "all");
 
   // Jump to a line.

@@ -258,6 +258,38 @@ fn drop_reasons_are_reported() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Each command's GPU time is listed, in GPU and CPU cycles, from the cost table of
+/// docs/emulator.md ("Drawing time", figures in CPU cycles): a 320x240 fill costs
+/// 23 + 240 x (320 / 16 + 1870 / 256), a 64x64 rectangle 8 + 64 x 615 / 256 + 4096 x
+/// 136 / 256; the NTSC GPU clock is 11/7 of the CPU's, the fraction of a cycle carried from
+/// one command to the next. Environment commands take none. The report's total is their sum.
+#[test]
+fn each_command_has_its_gpu_time() {
+    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
+                gp0 02000000 00000000 00f00140\n\
+                gp0 6000ff00 00000000 00400040\n\
+                gp0 e1000000\n";
+    let (s, rows, dir) = report(text, "times");
+    let fill: f64 = 23.0 + 240.0 * (20.0 + 1870.0 / 256.0);
+    let rect: f64 = 8.0 + 64.0 * 615.0 / 256.0 + 4096.0 * 136.0 / 256.0;
+    let gpu = |cpu: f64| (cpu * 11.0 / 7.0 + 1e-9).floor() as u64;
+    let fill_gpu = gpu(fill);
+    let rect_gpu = gpu(fill + rect) - fill_gpu;
+    assert_eq!(s.gpu_cycles, [0, 0, 0, fill_gpu, rect_gpu, 0]);
+    assert_eq!(rows[3]["gpu"].as_u64(), Some(fill_gpu));
+    assert_eq!(
+        rows[3]["cyc"].as_u64(),
+        Some((fill_gpu as f64 * 7.0 / 11.0).ceil() as u64)
+    );
+    assert_eq!(rows[4]["gpu"].as_u64(), Some(rect_gpu));
+    assert!(rows[5].get("gpu").is_none() && rows[0].get("cyc").is_none());
+    let total = ((fill_gpu + rect_gpu) as f64 * 7.0 / 11.0).ceil() as u64;
+    assert_eq!(s.cpu_cycles, total);
+    let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
+    assert!(index.contains(&format!("\"cpuCycles\":{total}")), "{index}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 #[test]
 fn truncated_stream_gives_a_report_with_the_cut_command_marked() {
     let text = std::fs::read_to_string(fixture("quad.gpu")).unwrap();

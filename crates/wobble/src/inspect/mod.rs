@@ -89,6 +89,11 @@ pub struct InspectSummary {
     pub images: usize,
     /// Texture-page views written.
     pub textures: usize,
+    /// Per command: the GPU cycles the console spends on it ([`gpu::Gpu::work_cycles`]
+    /// across the command: drawing, fills, copies, transfers; 0 for the rest).
+    pub gpu_cycles: Vec<u64>,
+    /// All commands' time in CPU cycles: the sum of `gpu_cycles` at the console's clock ratio.
+    pub cpu_cycles: u64,
 }
 
 fn io_err(path: &Path, e: std::io::Error) -> String {
@@ -344,6 +349,15 @@ pub fn write_report(
     let mut draw_indices = 0usize;
     let mut before = Vec::new();
     let mut index = 0usize;
+    // Per command: its time in CPU cycles, for the page's "slowest first" order.
+    let mut times: Vec<u64> = Vec::new();
+    let (num, den) = gpu.video_standard().clock_ratio();
+    // CPU cycles of one NTSC or PAL scanline (docs/hardware/timing.md §2), for hblanks.
+    let line_cycles = if gpu.video_standard() == gpu::VideoStandard::Pal {
+        3406.0 * den as f64 / num as f64
+    } else {
+        3413.0 * den as f64 / num as f64
+    };
     while let Some(cmd) = tracer.next_command(gpu) {
         let row = run_one(
             gpu,
@@ -359,6 +373,7 @@ pub fn write_report(
         if rows.is_empty() {
             chunk_lines.push(cmd.line);
         }
+        times.push((summary.gpu_cycles.last().copied().unwrap_or(0) * den).div_ceil(num));
         classes.push(class_code(&cmd.decoded));
         if cmd.decoded.kind.class() == Class::Draw {
             draw_indices += 1;
@@ -375,6 +390,9 @@ pub fn write_report(
     }
     summary.commands = index;
     summary.draws = draw_indices;
+    let gpu_total: u64 = summary.gpu_cycles.iter().sum();
+    let cpu_total = (gpu_total * den).div_ceil(num);
+    summary.cpu_cycles = cpu_total;
     summary.final_vram = gpu.vram().as_slice().to_vec();
 
     let final_img = vram_image::vram_image(&summary.final_vram, Expand::Replicate);
@@ -403,6 +421,11 @@ pub fn write_report(
         "chunkLines": chunk_lines,
         "classes": classes,
         "hasFaces": faces.is_some(),
+        "gpuCycles": gpu_total,
+        "cpuCycles": cpu_total,
+        "cpuHz": gpu::CPU_CLOCK_HZ,
+        "lineCycles": line_cycles,
+        "times": times,
     });
     write_file(
         &out.join("data/index.js"),
@@ -484,7 +507,12 @@ fn run_one(
         }
         _ => None,
     };
+    let work = gpu.work_cycles();
     Tracer::execute(gpu, cmd);
+    let gpu_cycles = gpu.work_cycles().saturating_sub(work);
+    summary.gpu_cycles.push(gpu_cycles);
+    let (num, den) = gpu.video_standard().clock_ratio();
+    let cpu_cycles = (gpu_cycles * den).div_ceil(num);
     let mut changed = 0u64;
     if let Some(b) = &region {
         let vram = gpu.vram().as_slice();
@@ -573,6 +601,8 @@ fn run_one(
         "tex": tex_json,
         "truncated": truncated,
         "origin": origin,
+        "gpu": (gpu_cycles > 0).then_some(gpu_cycles),
+        "cyc": (cpu_cycles > 0).then_some(cpu_cycles),
     });
     // Empty entries are left out: the page treats a missing key as null or empty.
     if let Value::Object(m) = &mut row {
@@ -603,7 +633,7 @@ pub fn inspect_stream(
 pub fn summary_line(s: &InspectSummary, out: &Path) -> String {
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     format!(
-        "{} ({}, {} dropped, {}) -> {}",
+        "{} ({}, {} dropped, {}; GPU time {} CPU cycles = {:.3} ms) -> {}",
         count(s.commands as u64, "command", "commands"),
         count(s.draws as u64, "draw", "draws"),
         count(s.dropped as u64, "primitive", "primitives"),
@@ -612,6 +642,8 @@ pub fn summary_line(s: &InspectSummary, out: &Path) -> String {
             "pixel change",
             "pixel changes"
         ),
+        s.cpu_cycles,
+        s.cpu_cycles as f64 * 1000.0 / gpu::CPU_CLOCK_HZ as f64,
         out.join("index.html").display()
     )
 }

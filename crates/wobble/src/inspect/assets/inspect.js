@@ -52,9 +52,21 @@ var INSPECT = (function () {
     if (dropped.length === r.prims.length) return '<span class="drop">dropped: ' + esc(dropped[0].fate) + "</span>";
     return '<span class="drop">' + dropped.length + "/" + r.prims.length + " dropped</span>";
   }
+  // CPU cycles as text, with the microseconds they last.
+  function cycles(n) {
+    return n + " CPU cycles (" + (n * 1e6 / idx.cpuHz).toFixed(1) + " \u00b5s)";
+  }
   function applyFilter() {
     var f = $("filter").value, cls = idx.classes;
     filtered = [];
+    if (f === "slow") {
+      var times = idx.times || [];
+      for (var k = 0; k < times.length; k++) if (times[k] > 0) filtered.push(k);
+      filtered.sort(function (a, b) { return times[b] - times[a] || a - b; });
+      page = 0;
+      showPage();
+      return;
+    }
     for (var i = 0; i < cls.length; i++) {
       var c = cls.charAt(i);
       if (f === "all" || c === f || (f === "d" && c === "D")) filtered.push(i);
@@ -74,7 +86,7 @@ var INSPECT = (function () {
         var r = row(i); if (!r) return;
         html.push('<tr data-i="' + i + '" class="k-' + idx.classes.charAt(i).toLowerCase() + (i === current ? " sel" : "") + '"><td>' + i +
           "</td><td>" + r.line + "</td><td>" + r.port + "</td><td>" + esc(r.name) + "</td><td>" + result(r) +
-          "</td><td>" + (r.changed || "") + "</td></tr>");
+          "</td><td>" + (r.changed || "") + '</td><td class="num">' + (r.cyc || "") + "</td></tr>");
       });
       $("rows").tBodies[0].innerHTML = html.join("");
       if (readyMs < 0) {
@@ -120,6 +132,11 @@ var INSPECT = (function () {
         " &mdash; " + (p.fate ? '<span class="drop">dropped: ' + esc(p.fate) + "</span>" : '<span class="ok">drawn</span>') + "</div>");
     });
     if (r.writes) h.push('<div>pixels changed: <b id="changed">' + r.changed + "</b></div>");
+    if (r.cyc) {
+      var share = idx.cpuCycles ? (100 * r.cyc / idx.cpuCycles).toFixed(1) : "0";
+      h.push('<div>GPU time: <b id="time">' + cycles(r.cyc) + "</b>, " + r.gpu + " GPU cycles, " + share +
+        "% of the whole</div>");
+    }
     h.push('<div class="pics">');
     if (r.img) {
       var c = r.img.crop, s = c[4], w = Math.ceil(c[2] / s), hh = Math.ceil(c[3] / s), zoom = Math.max(1, Math.min(4, Math.floor(320 / Math.max(w, hh))));
@@ -234,7 +251,8 @@ var INSPECT = (function () {
       $("title").textContent = idx.title;
       document.title = "wobble inspect: " + idx.title;
       $("summary").textContent = idx.commands + " commands, " + idx.draws + " draws, " + idx.dropped +
-        " primitives dropped, " + idx.changedTotal + " pixel changes";
+        " primitives dropped, " + idx.changedTotal + " pixel changes; GPU time " + cycles(idx.cpuCycles) +
+        ", " + (idx.cpuCycles / idx.lineCycles).toFixed(1) + " scanlines";
       $("filter").onchange = applyFilter;
       $("next-draw").onclick = function () { step(1); };
       $("prev-draw").onclick = function () { step(-1); };
