@@ -92,7 +92,10 @@ impl Cost {
     pub const CLUT_ENTRY: u32 = UNITS_PER_CYCLE / 2;
 
     /// One triangle: set-up, then per row walked, per pixel drawn, per shaded (Gouraud or
-    /// textured) pixel and per pixel pair read back when blending or mask-checking.
+    /// textured) pixel and per pixel pair read back when blending or mask-checking. A
+    /// primitive walks at most 1024 rows and draws at most 1024 x 512 pixels, so the sum stays
+    /// under 2^28 and the wrapping arithmetic never wraps.
+    #[inline(always)]
     pub fn triangle(
         second_of_quad: bool,
         gouraud: bool,
@@ -113,38 +116,38 @@ impl Cost {
         };
         let shaded = if gouraud || textured { drawn.pixels } else { 0 };
         setup
-            .saturating_add(shading)
-            .saturating_add(Self::span_work(read_back, drawn))
-            .saturating_add(shaded.saturating_mul(Self::SHADED_PIXEL))
+            .wrapping_add(shading)
+            .wrapping_add(Self::span_work(read_back, drawn))
+            .wrapping_add(shaded.wrapping_mul(Self::SHADED_PIXEL))
     }
 
-    /// Rows, pixels and read-back pairs.
+    /// Rows, pixels and read-back pairs (bounded as for [`Cost::triangle`]).
+    #[inline(always)]
     fn span_work(read_back: bool, drawn: DrawCount) -> u32 {
         let pairs = if read_back { drawn.pairs } else { 0 };
         drawn
             .rows
-            .saturating_mul(Self::ROW)
-            .saturating_add(drawn.pixels.saturating_mul(Self::PIXEL))
-            .saturating_add(pairs.saturating_mul(Self::PAIR))
+            .wrapping_mul(Self::ROW)
+            .wrapping_add(drawn.pixels.wrapping_mul(Self::PIXEL))
+            .wrapping_add(pairs.wrapping_mul(Self::PAIR))
     }
 
     /// One rectangle: set-up, per row walked, per pixel drawn, per textured pixel, and per
-    /// pixel pair read back when blending or mask-checking.
+    /// pixel pair read back when blending or mask-checking (bounded as for
+    /// [`Cost::triangle`]).
+    #[inline(always)]
     pub fn rectangle(textured: bool, read_back: bool, drawn: DrawCount) -> u32 {
         let shaded = if textured { drawn.pixels } else { 0 };
         Self::RECTANGLE_SETUP
-            .saturating_add(Self::span_work(read_back, drawn))
-            .saturating_add(shaded.saturating_mul(Self::SHADED_PIXEL))
+            .wrapping_add(Self::span_work(read_back, drawn))
+            .wrapping_add(shaded.wrapping_mul(Self::SHADED_PIXEL))
     }
 
-    /// One line segment of `steps` major-axis steps (the drawn points minus one).
+    /// One line segment: set-up and each step along the major axis (the points stepped
+    /// minus one; at most 2047 steps).
+    #[inline(always)]
     pub fn line(drawn: DrawCount) -> u32 {
-        Self::LINE_SETUP.saturating_add(
-            drawn
-                .pixels
-                .saturating_sub(1)
-                .saturating_mul(Self::LINE_STEP),
-        )
+        Self::LINE_SETUP.wrapping_add(drawn.pixels.saturating_sub(1).wrapping_mul(Self::LINE_STEP))
     }
 
     /// GP0(02h) over `width` (already rounded to 16) x `height`.
@@ -254,38 +257,53 @@ impl Drawing {
         takes_space: bool,
         n: u32,
         units: u32,
-        ratio: (u64, u64),
+        standard: VideoStandard,
     ) -> u32 {
         let queued = if takes_space && !self.idle() { n } else { 0 };
         self.fifo_words += queued;
         let words = core::mem::take(&mut self.partial_words) + queued;
-        let cycles = self.convert(units, ratio);
+        let cycles = self.convert(units, standard);
         self.complete_words(words, cycles);
         cycles
     }
 
     /// The words received since the previous unit form a unit costing `units` draw units.
     /// Returns the unit's GPU cycles.
-    pub fn complete(&mut self, units: u32, ratio: (u64, u64)) -> u32 {
+    pub fn complete(&mut self, units: u32, standard: VideoStandard) -> u32 {
         let words = core::mem::take(&mut self.partial_words);
-        let cycles = self.convert(units, ratio);
+        let cycles = self.convert(units, standard);
         self.complete_words(words, cycles);
         cycles
     }
 
-    /// `units` draw units in GPU cycles at `ratio` (GPU cycles per CPU cycle), the fraction
-    /// left over carried to the next call; counted in [`Drawing::total`].
+    /// `units` draw units in GPU cycles at the clock ratio of `standard`'s console, the
+    /// fraction left over carried to the next call; counted in [`Drawing::total`]. Each
+    /// console's ratio is a constant, so the divisions are by constants.
     #[inline(always)]
-    fn convert(&mut self, units: u32, (num, den): (u64, u64)) -> u32 {
-        if units == 0 {
-            return 0;
+    fn convert(&mut self, units: u32, standard: VideoStandard) -> u32 {
+        const NTSC_PER_CYCLE: u64 = NTSC_RATIO.1 * UNITS_PER_CYCLE as u64;
+        const PAL_PER_CYCLE: u64 = PAL_RATIO.1 * UNITS_PER_CYCLE as u64;
+        match standard {
+            VideoStandard::Ntsc => self.convert_at::<{ NTSC_RATIO.0 }, NTSC_PER_CYCLE>(units),
+            VideoStandard::Pal => self.convert_at::<{ PAL_RATIO.0 }, PAL_PER_CYCLE>(units),
         }
-        let per_cycle = den * UNITS_PER_CYCLE as u64;
-        let scaled = units as u64 * num + self.carry;
-        self.carry = scaled % per_cycle;
-        let cycles = u32::try_from(scaled / per_cycle).unwrap_or(u32::MAX);
+    }
+
+    /// [`Drawing::convert`] at `NUM` GPU cycles per `PER_CYCLE` draw units.
+    #[inline(always)]
+    fn convert_at<const NUM: u64, const PER_CYCLE: u64>(&mut self, units: u32) -> u32 {
+        let scaled = units as u64 * NUM + self.carry;
+        self.carry = scaled % PER_CYCLE;
+        let cycles = u32::try_from(scaled / PER_CYCLE).unwrap_or(u32::MAX);
         self.total = self.total.saturating_add(cycles as u64);
         cycles
+    }
+
+    /// The words received since the previous unit form a unit of `cycles` GPU cycles.
+    #[cfg(test)]
+    fn complete_gpu(&mut self, cycles: u32) {
+        let words = core::mem::take(&mut self.partial_words);
+        self.complete_words(words, cycles);
     }
 
     /// GPU cycles of every unit received since power-on (or the last GP1(00h)).
@@ -458,8 +476,8 @@ mod tests {
 
     #[test]
     fn unit_conversion_matches_the_clock_ratio() {
-        let ntsc = clock_ratio(VideoStandard::Ntsc);
-        assert_eq!(ntsc, (11, 7));
+        assert_eq!(clock_ratio(VideoStandard::Ntsc), (11, 7));
+        let ntsc = VideoStandard::Ntsc;
         let mut d = Drawing::default();
         // 7 CPU cycles = 11 GPU cycles exactly, nothing carried.
         assert_eq!(d.convert(cycles(7), ntsc), 11);
@@ -472,10 +490,9 @@ mod tests {
         assert_eq!(d.carry, 0);
         assert_eq!(d.total(), 22);
         // PAL: 451,584 CPU cycles are 709,379 GPU cycles.
-        let pal = clock_ratio(VideoStandard::Pal);
-        assert_eq!(pal, (709_379, 451_584));
+        assert_eq!(clock_ratio(VideoStandard::Pal), (709_379, 451_584));
         let mut d = Drawing::default();
-        assert_eq!(d.convert(cycles(451_584), pal), 709_379);
+        assert_eq!(d.convert(cycles(451_584), VideoStandard::Pal), 709_379);
         assert_eq!(d.carry, 0);
     }
 
@@ -485,16 +502,9 @@ mod tests {
         for _ in 0..3 {
             d.receive(true);
         }
-        d.complete(cycles(7000), (11, 7));
+        d.complete(cycles(7000), VideoStandard::Ntsc);
         assert_eq!(d.fifo_words(), 0);
         assert_eq!(d.cycles_until_idle(), 11000);
-        let mut d = Drawing::default();
-        for _ in 0..3 {
-            d.receive(true);
-        }
-        d.complete_words(0, 1000);
-        assert_eq!(d.fifo_words(), 0);
-        assert_eq!(d.cycles_until_idle(), 1000);
         assert!(!d.idle());
     }
 
@@ -502,13 +512,13 @@ mod tests {
     fn words_queue_while_busy_and_drain_in_order() {
         let mut d = Drawing::default();
         d.receive(true);
-        d.complete(cycles(700), (1, 7));
+        d.complete_gpu(100);
         // Two 3-word units behind it.
-        for cost in [350, 490] {
+        for cost in [50, 70] {
             for _ in 0..3 {
                 d.receive(true);
             }
-            d.complete(cycles(cost), (1, 7));
+            d.complete_gpu(cost);
         }
         assert_eq!(d.fifo_words(), 6);
         assert_eq!(d.cycles_until_idle(), 220);
@@ -528,9 +538,9 @@ mod tests {
     fn words_that_take_no_space_never_count() {
         let mut d = Drawing::default();
         d.receive(true);
-        d.complete(cycles(10), (1, 1));
+        d.complete_gpu(10);
         d.receive(false);
-        d.complete(0, (1, 1));
+        d.complete_gpu(0);
         assert_eq!(d.fifo_words(), 0);
         assert!(!d.unit_queued());
     }
@@ -538,13 +548,13 @@ mod tests {
     #[test]
     fn room_appears_when_enough_units_leave() {
         let mut d = Drawing::default();
-        d.complete(cycles(10), (1, 1));
+        d.complete_gpu(10);
         // Four 4-word units fill the FIFO.
         for cost in [1, 2, 3, 4] {
             for _ in 0..4 {
                 d.receive(true);
             }
-            d.complete(cycles(cost), (1, 1));
+            d.complete_gpu(cost);
         }
         assert_eq!(d.fifo_words(), 16);
         // The executing unit (10) must finish, then the first queued unit is pulled.
@@ -560,9 +570,9 @@ mod tests {
     #[test]
     fn fifo_clear_keeps_the_executing_unit() {
         let mut d = Drawing::default();
-        d.complete(cycles(10), (1, 1));
+        d.complete_gpu(10);
         d.receive(true);
-        d.complete(cycles(5), (1, 1));
+        d.complete_gpu(5);
         d.clear_fifo();
         assert_eq!(d.fifo_words(), 0);
         assert_eq!(d.cycles_until_idle(), 10);

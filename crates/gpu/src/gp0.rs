@@ -4,7 +4,7 @@
 //! from the command table ([`crate::command`]).
 
 use crate::command::{self, Command, Kind, LineOp, MAX_PACKET, PolygonOp, RectangleOp, SpriteSize};
-use crate::drawing::{Cost, FIFO_WORDS, clock_ratio};
+use crate::drawing::{Cost, FIFO_WORDS};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
     DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
@@ -485,9 +485,7 @@ impl Gpu {
             }
         };
         if let Some(units) = units {
-            let cycles = self
-                .drawing
-                .complete(units, clock_ratio(self.timing.standard()));
+            let cycles = self.drawing.complete(units, self.timing.standard());
             self.read.unit_queued(fetch, cycles);
         }
     }
@@ -528,7 +526,7 @@ impl Gpu {
             head.takes_fifo_space,
             n as u32,
             units,
-            clock_ratio(self.timing.standard()),
+            self.timing.standard(),
         );
         self.read
             .unit_queued(matches!(head.kind, Kind::VramToCpu), cycles);
@@ -551,8 +549,7 @@ impl Gpu {
             let mut packet = self.gp0.buf;
             packet[0] = first_triangle;
             let units = self.polygon(PolygonOp { quad: false, ..op }, &packet);
-            self.drawing
-                .complete(units, clock_ratio(self.timing.standard()));
+            self.drawing.complete(units, self.timing.standard());
         }
         self.gp0 = Gp0State::default();
     }
