@@ -18,7 +18,7 @@ pub const SAVE_STATE_MAGIC: u32 = u32::from_le_bytes(*b"WGPU");
 
 /// The save-state layout this build writes and reads. It changes whenever a field of the
 /// chip state is added, removed, reordered or given another meaning.
-pub const SAVE_STATE_VERSION: u32 = 1;
+pub const SAVE_STATE_VERSION: u32 = 2;
 
 /// Why a save state was refused. Serde formats carry it as their custom error, whose message
 /// is this type's `Display` text.

@@ -229,7 +229,7 @@ fn unreachable_fields_are_refused() {
     let g = busy_gpu();
     let base = body_json(&g);
     type Edit = fn(&mut serde_json::Value);
-    let cases: [(&str, Edit); 16] = [
+    let cases: [(&str, Edit); 17] = [
         ("GP0 packet buffer longer", |v| v["gp0"]["len"] = 13.into()),
         ("GP0 packet words during a transfer", |v| {
             v["gp0"]["len"] = 1.into()
@@ -253,6 +253,9 @@ fn unreachable_fields_are_refused() {
             v["drawing"]["fifo_words"] = 17.into()
         }),
         ("drawing queue index", |v| v["drawing"]["head"] = 16.into()),
+        ("drawing-time carry", |v| {
+            v["drawing"]["carry"] = (451_584u64 * 256).into()
+        }),
         ("interlace field", |v| v["timing"]["field"] = 2.into()),
         ("video clock remainder", |v| {
             v["timing"]["remainder"] = 7.into()
@@ -461,28 +464,27 @@ fn item(kind: u8, r: [u32; 8], out: &mut Vec<Action>) {
     }
 }
 
-/// Perform `a`; returns what the CPU observes (GPUREAD value or the events), with GPUSTAT.
-fn perform(g: &mut Gpu, a: Action) -> (Option<u32>, Option<gpu::Events>, u32) {
+/// Perform `a`; returns what the CPU observes (the GPUREAD value and the stall of a load or
+/// store, or the events), with GPUSTAT and the GPU time received.
+type Observed = (Option<(u32, u32)>, Option<gpu::Events>, u32, u64);
+fn perform(g: &mut Gpu, a: Action) -> Observed {
     let (read, events) = match a {
-        Action::Gp0(w) => {
-            g.gp0(w);
-            (None, None)
-        }
+        Action::Gp0(w) => (Some((0, g.gp0(w))), None),
         Action::Gp1(w) => {
             g.gp1(w);
             (None, None)
         }
         Action::Run(c) => (None, Some(g.run(c))),
-        Action::Read => (Some(g.gpuread()), None),
+        Action::Read => (Some(g.gpuread_timed()), None),
     };
-    (read, events, g.gpustat())
+    (read, events, g.gpustat(), g.work_cycles())
 }
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(96))]
 
-    /// VRAM, GPUSTAT, every GPUREAD value and every `Events` of a GPU restored from a save
-    /// taken at any action stay those of the GPU that was never saved.
+    /// VRAM, GPUSTAT, every GPUREAD value, every stall and every `Events` of a GPU restored
+    /// from a save taken at any action stay those of the GPU that was never saved.
     #[test]
     fn save_anywhere_continues_identically(
         items in prop::collection::vec((0u8..16, prop::array::uniform8(any::<u32>())), 1..60),
