@@ -1,9 +1,17 @@
-//! GTE commands as an emulator drives them: per call, the inputs are written with MTC2 (and the
-//! command word issued) on an evolving register state, and the results and FLAG read back with
-//! MFC2/CFC2. Register indices and command words pass through `black_box`, as a CPU decoder
-//! produces them at run time; the written values are made ahead of time, as an emulator finds
-//! them in CPU registers. Each command has a `registers only` row (the same MTC2/MFC2/CFC2
-//! traffic without the command) and compares with the `commands` bench (`execute` alone).
+//! GTE commands as an emulator drives them, in the two shapes an emulator's calls take.
+//!
+//! - `emulator/…`: per call, the inputs are written with MTC2 (and the command word issued) on
+//!   an evolving register state, and the results and FLAG read back with MFC2/CFC2. The
+//!   written values are made ahead of time, as an emulator finds them in CPU registers. Each
+//!   command has a `registers only` row (the same MTC2/MFC2/CFC2 traffic without the command).
+//! - `plain/…`: the command alone, back to back, each call reading what the previous ones
+//!   left in the registers (no MTC2 or MFC2: a game's loop of one command, such as a
+//!   light-transform loop).
+//!
+//! Register indices and command words pass through `black_box`, as a CPU decoder produces
+//! them at run time. Both shapes are timed by one function each, of the shape of the C++ loops
+//! that time Mednafen's GTE in the comparison (docs/performance.md, "The comparison with
+//! Mednafen").
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gte::{Command, Gte, MatrixSel, Opcode, TranslationSel, VectorSel};
@@ -89,7 +97,9 @@ fn word(op: Opcode, lm: bool) -> u32 {
 }
 
 /// Where each call's result goes: one store per call, which the compiler must make and
-/// cannot use as scratch space on the way.
+/// cannot use as scratch space on the way. Each timed loop reads it once at its end: a
+/// value no code reads is one the compiler may drop, and with it the store and the MFC2
+/// loads that compute it.
 static SINK: AtomicU32 = AtomicU32::new(0);
 
 /// `iters` calls as an emulator makes them: per call, MTC2 of call `i & 1023`'s `writes`,
@@ -128,15 +138,39 @@ fn emulator_loop<const N: usize, const R: usize>(
             Ordering::Relaxed,
         );
     }
+    black_box(SINK.load(Ordering::Relaxed));
 }
 
-/// Benchmark `op` as an emulator runs it ([`emulator_loop`]): per call, MTC2 of `writes`
-/// (register, value) pairs made from a random word ahead of time (an emulator takes them
-/// from CPU registers), the command, then MFC2 of `reads` and CFC2 of FLAG. A second row,
+/// `iters` calls of `cmd` alone, back to back on the register state the previous calls left:
+/// no MTC2, MFC2 or CFC2, each call's cycle count stored to [`SINK`]. The command word passes
+/// through `black_box` per call, as a CPU decoder produces it. The shape of the C++ loop that
+/// times Mednafen's GTE in the same way (docs/performance.md, "The plain loop").
+#[inline(never)]
+fn plain_loop(gte: &mut Gte, cmd: u32, iters: u64) {
+    for _ in 0..iters {
+        SINK.store(gte.execute(black_box(cmd)).unwrap_or(0), Ordering::Relaxed);
+    }
+    black_box(SINK.load(Ordering::Relaxed));
+}
+
+/// Which loop a row runs in.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Shape {
+    /// [`emulator_loop`]: the row and its `registers only` row.
+    Emulator,
+    /// [`plain_loop`].
+    Plain,
+}
+
+/// Benchmark `op` in `shape`. [`Shape::Emulator`] ([`emulator_loop`]): per call, MTC2 of
+/// `writes` (register, value) pairs made from a random word ahead of time (an emulator takes
+/// them from CPU registers), the command, then MFC2 of `reads` and CFC2 of FLAG; a second row,
 /// `…/registers only`, does the same register traffic without the command: the share of the
-/// per-call time that is register access rather than the command.
+/// per-call time that is register access rather than the command. [`Shape::Plain`]
+/// ([`plain_loop`]): the command alone, from the set-up with the first call's `writes`.
 fn run<const N: usize, const R: usize>(
     c: &mut Criterion,
+    shape: Shape,
     name: &str,
     op: Opcode,
     lm: bool,
@@ -150,13 +184,27 @@ fn run<const N: usize, const R: usize>(
         .try_into()
         .expect("1024 calls");
     let cmd = word(op, lm);
+    if shape == Shape::Plain {
+        let mut gte = loaded();
+        for &(reg, value) in &calls[0] {
+            gte.write_data(reg, value);
+        }
+        c.bench_function(&format!("plain/{name}"), |b| {
+            b.iter_custom(|iters| {
+                let start = Instant::now();
+                plain_loop(&mut gte, cmd, iters);
+                start.elapsed()
+            })
+        });
+        return;
+    }
     for execute in [true, false] {
         let mut gte = loaded();
         let mut i = 0usize;
         let label = if execute {
-            name.to_string()
+            format!("emulator/{name}")
         } else {
-            format!("{name}/registers only")
+            format!("emulator/{name}/registers only")
         };
         c.bench_function(&label, |b| {
             b.iter_custom(|iters| {
@@ -179,10 +227,13 @@ fn vertices(r: u32) -> [(u32, u32); 6] {
     w
 }
 
-fn emulator(c: &mut Criterion) {
+/// The rows, each in `shape`: the ten commands of the comparison with Mednafen since issue 9,
+/// then GPL, AVSZ4, SQR and OP, the other short commands.
+fn rows(c: &mut Criterion, shape: Shape) {
     run(
         c,
-        "emulator/RTPS",
+        shape,
+        "RTPS",
         Opcode::Rtps,
         false,
         |r| {
@@ -193,7 +244,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/RTPT",
+        shape,
+        "RTPT",
         Opcode::Rtpt,
         false,
         vertices,
@@ -201,7 +253,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/NCLIP",
+        shape,
+        "NCLIP",
         Opcode::Nclip,
         false,
         |r| -> [(u32, u32); 3] {
@@ -217,7 +270,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/NCDS",
+        shape,
+        "NCDS",
         Opcode::Ncds,
         true,
         |r| {
@@ -239,7 +293,8 @@ fn emulator(c: &mut Criterion) {
     };
     run(
         c,
-        "emulator/NCDT",
+        shape,
+        "NCDT",
         Opcode::Ncdt,
         true,
         vertices_and_colour,
@@ -247,7 +302,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/NCCT",
+        shape,
+        "NCCT",
         Opcode::Ncct,
         true,
         vertices_and_colour,
@@ -255,7 +311,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/MVMVA",
+        shape,
+        "MVMVA",
         Opcode::Mvmva,
         false,
         |r| {
@@ -266,7 +323,8 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/AVSZ3",
+        shape,
+        "AVSZ3",
         Opcode::Avsz3,
         false,
         |r| {
@@ -280,28 +338,57 @@ fn emulator(c: &mut Criterion) {
     );
     run(
         c,
-        "emulator/DPCS",
+        shape,
+        "DPCS",
         Opcode::Dpcs,
         false,
         |r| [(6, 0x3000_0000 | (r & 0xFF_FFFF)), (8, r >> 19)],
         &[22],
     );
+    let interpolated = |r: u32| {
+        [
+            (8, r >> 19),
+            (9, r & 0x7FFF),
+            (10, (r >> 8) & 0x7FFF),
+            (11, (r >> 16) & 0x7FFF),
+        ]
+    };
+    run(c, shape, "GPF", Opcode::Gpf, false, interpolated, &[22]);
+    run(c, shape, "GPL", Opcode::Gpl, false, interpolated, &[22]);
     run(
         c,
-        "emulator/GPF",
-        Opcode::Gpf,
+        shape,
+        "AVSZ4",
+        Opcode::Avsz4,
         false,
         |r| {
             [
-                (8, r >> 19),
-                (9, r & 0x7FFF),
-                (10, (r >> 8) & 0x7FFF),
-                (11, (r >> 16) & 0x7FFF),
+                (16, r & 0xFFFF),
+                (17, r >> 16),
+                (18, r.rotate_left(8) & 0xFFFF),
+                (19, r.rotate_left(24) & 0xFFFF),
             ]
         },
-        &[22],
+        &[7],
     );
+    // IR1-3 in -1000h..=FFFh (a unit vector's components, 1.3.12).
+    let ir = |r: u32| -> [(u32, u32); 3] {
+        core::array::from_fn(|k| {
+            let v = ((r >> (10 * k)) & 0x1FFF) as i32 - 0x1000;
+            (9 + k as u32, v as u32)
+        })
+    };
+    run(c, shape, "SQR", Opcode::Sqr, false, ir, &[25, 26, 27]);
+    run(c, shape, "OP", Opcode::Op, false, ir, &[25, 26, 27]);
 }
 
-criterion_group!(benches, emulator);
+fn emulator(c: &mut Criterion) {
+    rows(c, Shape::Emulator);
+}
+
+fn plain(c: &mut Criterion) {
+    rows(c, Shape::Plain);
+}
+
+criterion_group!(benches, emulator, plain);
 criterion_main!(benches);
