@@ -115,15 +115,12 @@ impl Gte {
         let plain = start.iter().all(|&s| is_plain_start(s, 1));
         // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
         // saturate one by one.
-        let last = step_with::<1, { ir_test::EACH }>(
-            &mut self.flag_bits,
-            start,
-            products,
-            plain,
-            shift,
-            lm,
-        );
-        self.step_result(last, &[], 0);
+        // The FLAG bits in a local, added once: GPL's sums leave the 44-bit range in a loop
+        // of the command, and flagged through the field on each addition they cost GPL 2.5
+        // times its time (docs/performance.md, "The plain loop").
+        let mut flags = 0;
+        let last = step_with::<1, { ir_test::EACH }>(&mut flags, start, products, plain, shift, lm);
+        self.step_result(last, &[], flags);
         self.push_color();
     }
 }
