@@ -16,11 +16,9 @@ impl Gte {
         let (x0, y0) = self.regs.sxy(0);
         let (x1, y1) = self.regs.sxy(1);
         let (x2, y2) = self.regs.sxy(2);
-        let (x0, y0, x1, y1, x2, y2) = (
-            x0 as i64, y0 as i64, x1 as i64, y1 as i64, x2 as i64, y2 as i64,
-        );
-        // x0*y1 + x1*y2 + x2*y0 - x0*y2 - x1*y0 - x2*y1, grouped by X: the same integer.
-        let area = x0 * (y1 - y2) + x1 * (y2 - y0) + x2 * (y0 - y1);
+        // x0*y1 + x1*y2 + x2*y0 - x0*y2 - x1*y0 - x2*y1 as the cross product of the edges
+        // from vertex 0: the same integer, in two products.
+        let area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
         self.set_mac0(area);
     }
 
