@@ -1,12 +1,13 @@
 // Drives the inspect report in headless Chromium. Arguments: chromium path, report
-// index.html, screenshot path. Exits non-zero on the first failed check.
+// index.html, screenshot path, frame report index.html (render --inspect), the stream's
+// file name. Exits non-zero on the first failed check.
 "use strict";
 const { chromium } = require("playwright-core");
 const fs = require("fs");
 const os = require("os");
 const path = require("path");
 
-const [chromePath, reportPath, shotPath] = process.argv.slice(2);
+const [chromePath, reportPath, shotPath, framePath, streamName] = process.argv.slice(2);
 
 function check(cond, what) {
   if (!cond) {
@@ -34,13 +35,40 @@ function check(cond, what) {
   page.on("console", (m) => { if (m.type() === "error") errors.push(m.text()); });
   // No network: every request must be a local file.
   page.on("request", (r) => { if (!r.url().startsWith("file://")) errors.push("network request " + r.url()); });
+  page.on("dialog", (d) => { errors.push("dialog opened: " + d.message()); d.dismiss(); });
+
+  // Click VRAM pixel (x, y) in the VRAM view: scroll the view so it shows, then click it.
+  async function clickPixel(x, y) {
+    const at = await page.evaluate(([x, y]) => {
+      const sc = document.getElementById("vram-scroll"), k = INSPECT.scale();
+      sc.scrollLeft = (x + 0.5) * k - sc.clientWidth / 2;
+      sc.scrollTop = (y + 0.5) * k - sc.clientHeight / 2;
+      const r = document.getElementById("vram-canvas").getBoundingClientRect();
+      return { x: r.left + (x + 0.5) * k, y: r.top + (y + 0.5) * k };
+    }, [x, y]);
+    await page.mouse.click(at.x, at.y);
+  }
+  // Whether element `sel` lies on screen inside its scrolling pane `pane`.
+  async function shown(sel, pane) {
+    return page.evaluate(([sel, pane]) => {
+      const e = document.querySelector(sel), p = document.querySelector(pane);
+      if (!e || !p) return false;
+      const r = e.getBoundingClientRect(), q = p.getBoundingClientRect();
+      return r.height > 0 && r.top >= q.top - 1 && r.bottom <= q.bottom + 1 && r.bottom <= window.innerHeight;
+    }, [sel, pane]);
+  }
 
   await page.goto("file://" + path.resolve(reportPath));
   await page.waitForSelector("#rows tbody tr");
   // From navigation start to the first rows on screen, as the page measures it.
   const openMs = await page.evaluate(() => INSPECT.readyMs());
   check(openMs >= 0 && openMs < 2000, `page opens with rows in under 2 s (${Math.round(openMs)} ms)`);
-  await page.waitForFunction(() => INSPECT.writerAt(0, 0) >= 0);
+  await page.waitForFunction(() => INSPECT.writerAt(0, 0) >= 0 && INSPECT.vramAt(0, 0) >= 0);
+
+  // The stream's name reaches the page as text, never as markup.
+  const title = await page.textContent("#title");
+  check(title === streamName, "file name shown as text: " + title);
+  check((await page.$("header img")) === null && (await page.title()).endsWith(streamName), "no markup from the file name");
 
   const summary = await page.textContent("#summary");
   check(/\d+ commands, \d+ draws/.test(summary), "summary shows command and draw counts: " + summary);
@@ -75,24 +103,82 @@ function check(cond, what) {
   check(imgOk, "before/after image loaded from disk");
   const time = await page.textContent("#time").catch(() => "");
   check(/^\d+ CPU cycles/.test(time), "the draw's GPU time is shown: " + time);
+  const labels = await page.$$eval("#detail .crop .label", (l) => l.map((e) => e.textContent));
+  check(labels.join("|") === "before|after|changed (magenta)", "crops labelled: " + labels.join(", "));
+  const panels = await page.$$eval("#detail .panel", (p) => p.map((e) => [e.clientWidth, getComputedStyle(e).overflow, getComputedStyle(e.querySelector("svg")).overflow]));
+  check(panels.every((p) => p[0] >= 160 && p[1] === "hidden" && p[2] === "hidden"), "crops at least 160 px wide, outlines clipped to them: " + JSON.stringify(panels));
 
   // Who wrote this pixel: find a pixel some command changed, click it on the final VRAM.
   const hit = await page.evaluate(() => {
     for (let y = 0; y < 512; y += 3) for (let x = 0; x < 1024; x += 3) {
       const w = INSPECT.writerAt(x, y);
-      if (w > 0) return { x, y, w };
+      if (w > 0 && INSPECT.vramAt(x, y) > 0) return { x, y, w };
     }
     return null;
   });
-  check(hit !== null, "some pixel was changed by a command");
-  const box = await page.locator("#vram-img").boundingBox();
-  await page.locator("#vram-img").click({ position: { x: (hit.x + 0.5) * box.width / 1024, y: (hit.y + 0.5) * box.height / 512 } });
+  check(hit !== null, "some pixel was changed by a command to a non-zero value");
+  await clickPixel(hit.x, hit.y);
   await page.waitForFunction((n) => document.querySelector("#who").textContent.includes("#" + n), hit.w - 1);
   const who = await page.textContent("#who");
   check(who.includes(`(${hit.x}, ${hit.y})`), "lookup names the clicked pixel: " + who);
   await page.waitForFunction((n) => INSPECT.current() === n, hit.w - 1);
   const sel = await page.textContent("#detail h2");
   check(sel.startsWith("#" + (hit.w - 1) + " "), "lookup selects the last writer: " + sel);
+  // Two panes: the VRAM view and the detail stay on screen together, the row in its list.
+  check(await shown("#vram-mark", "#vram-scroll"), "clicked pixel marked in the VRAM view");
+  check(await shown("#detail h2", "#detail"), "detail on screen next to the VRAM view");
+  check(await shown("#rows tr.sel", "#left"), "selected row scrolled into view");
+
+  // Pixel readout: raw halfword, 5-bit and 8-bit channels, mask bit, coordinates.
+  async function checkReadout(x, y, what) {
+    const v = await page.evaluate(([x, y]) => INSPECT.vramAt(x, y), [x, y]);
+    const r = v & 31, g = (v >> 5) & 31, b = (v >> 10) & 31, e = (c) => (c << 3) | (c >> 2);
+    const want = `(${x}, ${y}) ${v.toString(16).padStart(4, "0")}h  RGB5 ${r},${g},${b}  RGB8 ${e(r)},${e(g)},${e(b)}  mask ${v >> 15}`;
+    const got = await page.textContent("#readout");
+    check(got === want, what + ": " + got);
+  }
+  await checkReadout(hit.x, hit.y, "readout of the clicked pixel");
+  // Zoom: 8 screen pixels a VRAM pixel, nearest-neighbour; clicks still land on the right pixel.
+  await page.selectOption("#zoom", "8");
+  check(Math.abs((await page.evaluate(() => INSPECT.scale())) - 8) < 1e-6, "zoom 8x");
+  const crisp = await page.$eval("#vram-canvas", (c) => getComputedStyle(c).imageRendering);
+  check(crisp === "pixelated", "zoomed VRAM drawn with crisp pixels: " + crisp);
+  await clickPixel(hit.x, hit.y);
+  await checkReadout(hit.x, hit.y, "readout at 8x");
+  // Hover another pixel: the readout follows the pointer.
+  {
+    const hx = Math.min(1023, hit.x + 2), hy = Math.min(511, hit.y + 1);
+    const at = await page.evaluate(([x, y]) => {
+      const k = INSPECT.scale(), r = document.getElementById("vram-canvas").getBoundingClientRect();
+      return { x: r.left + (x + 0.5) * k, y: r.top + (y + 0.5) * k };
+    }, [hx, hy]);
+    await page.mouse.move(at.x, at.y);
+    await checkReadout(hx, hy, "readout on hover");
+  }
+  // The wheel zooms in around the pointer.
+  {
+    const box = await page.locator("#vram-scroll").boundingBox();
+    await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+    await page.mouse.wheel(0, -100);
+    await page.waitForFunction(() => INSPECT.scale() > 8.5);
+    check(Math.abs((await page.evaluate(() => INSPECT.scale())) - 16) < 1e-6, "wheel zooms from 8x to 16x");
+  }
+  // Drag pans the view.
+  {
+    const before = await page.$eval("#vram-scroll", (s) => [s.scrollLeft, s.scrollTop]);
+    const box = await page.locator("#vram-scroll").boundingBox();
+    await page.mouse.move(box.x + 200, box.y + 150);
+    await page.mouse.down();
+    await page.mouse.move(box.x + 120, box.y + 100, { steps: 4 });
+    await page.mouse.up();
+    const after = await page.$eval("#vram-scroll", (s) => [s.scrollLeft, s.scrollTop]);
+    check(after[0] - before[0] === 80 && after[1] - before[1] === 50, `drag pans the view by (80, 50): ${before} -> ${after}`);
+  }
+  await page.selectOption("#zoom", "fit");
+
+  // Display area (GP1 05h-08h) drawn over VRAM, with its size.
+  const disp = await page.textContent("#disp-box");
+  check(/display \d+x\d+/.test(disp) && (await page.$eval("#disp-box", (b) => b.style.display)) === "block", "display-area overlay: " + disp);
 
   // A pixel no command changed.
   const miss = await page.evaluate(() => {
@@ -101,7 +187,7 @@ function check(cond, what) {
     return null;
   });
   if (miss) {
-    await page.locator("#vram-img").click({ position: { x: (miss.x + 0.5) * box.width / 1024, y: (miss.y + 0.5) * box.height / 512 } });
+    await clickPixel(miss.x, miss.y);
     await page.waitForFunction(() => document.querySelector("#who").textContent.includes("not changed"));
     check(true, "unchanged pixel reported as such");
   }
@@ -127,6 +213,27 @@ function check(cond, what) {
   const line = Number(/line (\d+)/.exec(jumped)[1]);
   check(line <= 40, "jump to line 40 selects the command at or before it: " + jumped);
 
+  // Jump to the last row of the first page: the list scrolls to show it.
+  const far = await page.evaluate(() => {
+    const rows = document.querySelectorAll("#rows tbody tr");
+    const tr = rows[rows.length - 1];
+    return { i: +tr.getAttribute("data-i"), line: +tr.children[1].textContent };
+  });
+  await page.evaluate(() => { document.getElementById("left").scrollTop = 0; });
+  await page.fill("#jump", String(far.line));
+  await page.click("#jump-go");
+  await page.waitForFunction((n) => INSPECT.current() === n, far.i);
+  await page.waitForTimeout(100);
+  check(await shown("#rows tr.sel", "#left"), `jump to line ${far.line} scrolls row #${far.i} into view`);
+
+  // A hash change after load selects its command.
+  await page.evaluate(() => { location.hash = "#cmd=3"; });
+  await page.waitForFunction(() => INSPECT.current() === 3);
+  check((await page.textContent("#detail h2")).startsWith("#3 "), "hash change #cmd=3 selects command 3");
+  await page.evaluate((l) => { location.hash = "#line=" + l; }, far.line);
+  await page.waitForFunction((n) => INSPECT.current() === n, far.i);
+  check(true, `hash change #line=${far.line} selects command #${far.i}`);
+
   // Back to the first draw that changed pixels for the screenshot.
   const firstLine = /line (\d+)/.exec(drawn)[1];
   await page.fill("#jump", firstLine);
@@ -136,6 +243,35 @@ function check(cond, what) {
   await page.evaluate(() => window.scrollTo(0, 0));
   await page.screenshot({ path: shotPath, fullPage: false });
   check(fs.statSync(shotPath).size > 10000, "screenshot written: " + shotPath);
+
+  // The frame report: faces filtered by verdict and linked to their commands.
+  await page.goto("file://" + path.resolve(framePath));
+  await page.waitForSelector("#rows tbody tr");
+  await page.click("#tab-faces");
+  await page.waitForSelector("#face-rows");
+  const total = Number(await page.textContent("#face-count"));
+  const fateCol = await page.$$eval("#face-rows th", (t) => t.map((e) => e.textContent).indexOf("fate"));
+  const faceCol = await page.$$eval("#face-rows th", (t) => t.map((e) => e.textContent).indexOf("face"));
+  let sum = 0;
+  for (const v of ["drawn", "dropped", "culled", "off screen", "split"]) {
+    await page.selectOption("#face-filter", v);
+    const n = Number(await page.textContent("#face-count"));
+    const fates = await page.$$eval("#face-rows tr td:nth-child(" + (fateCol + 1) + ")", (t) => t.map((e) => e.textContent));
+    check(fates.every((f) => f.startsWith(v)), `filter ${v}: ${n} faces, every shown fate starts with it`);
+    sum += n;
+  }
+  check(sum === total && total > 0, `the verdicts add up to the ${total} faces`);
+  await page.selectOption("#face-filter", "drawn");
+  const link = await page.evaluate((fc) => {
+    const tr = document.querySelector("#face-rows tr.link");
+    return { line: +tr.getAttribute("data-line"), face: tr.children[fc].textContent };
+  }, faceCol);
+  await page.click("#face-rows tr.link");
+  await page.waitForFunction((l) => /line (\d+)/.test(document.querySelector("#detail h2").textContent) &&
+    Number(/line (\d+)/.exec(document.querySelector("#detail h2").textContent)[1]) === l, link.line);
+  const origin = await page.textContent("#detail .origin");
+  check(origin.includes("face " + link.face), `a drawn face's row selects its packet (line ${link.line}): ${origin}`);
+  check(await shown("#detail h2", "#detail"), "the packet's detail shows next to the faces table");
 
   check(errors.length === 0, "no page errors, console errors or network requests" + (errors.length ? ": " + errors.join("; ") : ""));
   await browser.close();

@@ -452,3 +452,86 @@ fn rendered_frame_traces_faces_to_packets() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Decodes standard base64 (the report's data scripts), independently of the writer.
+fn unbase64(s: &str) -> Vec<u8> {
+    let val = |c: u8| match c {
+        b'A'..=b'Z' => c - b'A',
+        b'a'..=b'z' => c - b'a' + 26,
+        b'0'..=b'9' => c - b'0' + 52,
+        b'+' => 62,
+        b'/' => 63,
+        _ => panic!("not base64: {c}"),
+    };
+    let mut out = Vec::new();
+    for q in s.as_bytes().chunks(4) {
+        let n = q.iter().filter(|&&c| c != b'=').count();
+        let mut v = 0u32;
+        for (i, &c) in q.iter().enumerate() {
+            v |= u32::from(if c == b'=' { 0 } else { val(c) }) << (18 - 6 * i);
+        }
+        out.extend_from_slice(&v.to_be_bytes()[1..n]);
+    }
+    out
+}
+
+/// The page's pixel readout reads `data/vram.js`: the final VRAM of a plain replay, as
+/// little-endian halfwords. The display-area list starts at command 0 and ends with the area
+/// the GPU shows after the last command. A before/after image's third panel marks in
+/// magenta exactly the pixels the command changed (crops shown at 1:1).
+#[test]
+fn raw_vram_display_area_and_changed_panel() {
+    let text = std::fs::read_to_string(fixture("transparency.gpu")).unwrap();
+    let (s, rows, dir) = report(&text, "raw-vram");
+    let mut plain = Gpu::new();
+    command_stream::run(&mut plain, &command_stream::parse(&text).unwrap());
+    let js = std::fs::read_to_string(dir.join("data/vram.js")).unwrap();
+    let b64 = js
+        .strip_prefix("INSPECT.vram(\"")
+        .and_then(|t| t.strip_suffix("\");\n"))
+        .unwrap();
+    let raw: Vec<u16> = unbase64(b64)
+        .chunks(2)
+        .map(|p| u16::from_le_bytes([p[0], p[1]]))
+        .collect();
+    assert!(raw == plain.vram().as_slice());
+
+    let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
+    let index: Value = serde_json::from_str(
+        index
+            .strip_prefix("INSPECT.index(")
+            .and_then(|t| t.strip_suffix(");\n"))
+            .unwrap(),
+    )
+    .unwrap();
+    let display = index["display"].as_array().unwrap();
+    assert_eq!(display[0][0], 0);
+    let a = plain.display_area();
+    let last = &display[display.len() - 1][1];
+    assert_eq!(
+        last,
+        &serde_json::json!([a.x, a.y, a.width, a.height, u16::from(a.color_24bit)])
+    );
+
+    let mut checked = 0;
+    for r in &rows {
+        let (Some(png), Some(crop)) = (r["img"]["png"].as_str(), r["img"]["crop"].as_array())
+        else {
+            continue;
+        };
+        if crop[4] != 1 {
+            continue;
+        }
+        let img = image::open(dir.join(png)).unwrap().to_rgb8();
+        let w = crop[2].as_u64().unwrap() as u32;
+        assert_eq!(img.width(), 3 * w + 8);
+        let magenta = (0..img.height())
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .filter(|&(x, y)| img.get_pixel(2 * (w + 4) + x, y).0 == [255, 0, 255])
+            .count();
+        assert_eq!(magenta as u64, r["changed"].as_u64().unwrap(), "{}", r["i"]);
+        checked += 1;
+    }
+    assert!(checked > 0 && s.images > 0);
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -55,8 +55,8 @@ pub struct InspectOptions {
 impl Default for InspectOptions {
     fn default() -> Self {
         Self {
-            max_images: 20_000,
-            max_textures: 2_000,
+            max_images: 1_000,
+            max_textures: 200,
         }
     }
 }
@@ -232,23 +232,29 @@ fn crop_for(b: &PixelBounds) -> Crop {
     Crop { x, y, w, h, scale }
 }
 
-/// Before (left) and after (right) of a crop (both `c.w` x `c.h`, row-major), side by side
-/// with a 4-pixel gap.
+/// Gap in pixels between the panels of a before/after image.
+const GAP: usize = 4;
+
+/// Before, after and changed panels of a crop (`before` and `after` both `c.w` x `c.h`,
+/// row-major), side by side with a 4-pixel gap. The changed panel shows the pixels whose value changed in magenta
+/// and the others as the after image at a quarter of its brightness.
 fn before_after(before: &[u16], after: &[u16], c: &Crop) -> RgbImage {
     let (w, h) = (c.w.div_ceil(c.scale), c.h.div_ceil(c.scale));
-    let gap = 4;
-    RgbImage::from_fn((2 * w + gap) as u32, h as u32, |x, y| {
+    RgbImage::from_fn((3 * w + 2 * GAP) as u32, h as u32, |x, y| {
         let (x, y) = (x as usize, y as usize);
-        let (src, cx) = if x < w {
-            (before, x)
-        } else if x >= w + gap {
-            (after, x - w - gap)
-        } else {
+        let (panel, cx) = (x / (w + GAP), x % (w + GAP));
+        if cx >= w {
             return Rgb([40, 40, 48]);
-        };
+        }
         let px = (cx * c.scale).min(c.w - 1);
         let py = (y * c.scale).min(c.h - 1);
-        Rgb(Expand::Replicate.pixel(src.get(py * c.w + px).copied().unwrap_or(0)))
+        let at = |src: &[u16]| src.get(py * c.w + px).copied().unwrap_or(0);
+        match panel {
+            0 => Rgb(Expand::Replicate.pixel(at(before))),
+            1 => Rgb(Expand::Replicate.pixel(at(after))),
+            _ if at(before) != at(after) => Rgb([255, 0, 255]),
+            _ => Rgb(Expand::Replicate.pixel(at(after)).map(|v| v / 4)),
+        }
     })
 }
 
@@ -328,6 +334,34 @@ pub fn write_report(
     origins: Option<&HashMap<usize, Origin>>,
     faces: Option<(&[&str], &[Vec<String>])>,
 ) -> Result<InspectSummary, String> {
+    write_report_with_progress(
+        gpu,
+        commands,
+        out,
+        title,
+        options,
+        origins,
+        faces,
+        &mut |_, _| {},
+    )
+}
+
+/// [`write_report`], calling `progress(done, total)` with the stream lines run so far and
+/// the stream's last line after every command.
+#[allow(clippy::too_many_arguments)]
+pub fn write_report_with_progress(
+    gpu: &mut Gpu,
+    commands: &[StreamCommand],
+    out: &Path,
+    title: &str,
+    options: InspectOptions,
+    origins: Option<&HashMap<usize, Origin>>,
+    faces: Option<(&[&str], &[Vec<String>])>,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<InspectSummary, String> {
+    let total_lines = commands.last().map_or(0, |c| c.line);
+    let mut display = Vec::new();
+    let mut last_area = None;
     for sub in ["data", "img", "tex"] {
         create_dir(&out.join(sub))?;
     }
@@ -379,7 +413,14 @@ pub fn write_report(
             draw_indices += 1;
         }
         rows.push(row);
+        let a = gpu.display_area();
+        let area = [a.x, a.y, a.width, a.height, u16::from(a.color_24bit)];
+        if last_area != Some(area) {
+            last_area = Some(area);
+            display.push(json!([index, area]));
+        }
         index += 1;
+        progress(cmd.last_line, total_lines);
         if rows.len() == CHUNK {
             write_chunk(out, (index - 1) / CHUNK, &rows)?;
             rows.clear();
@@ -408,6 +449,14 @@ pub fn write_report(
         &out.join("data/writers.js"),
         format!("INSPECT.writers(\"{}\");\n", base64(&bytes)),
     )?;
+    let mut raw = Vec::with_capacity(VRAM_LEN * 2);
+    for p in &summary.final_vram {
+        raw.extend_from_slice(&p.to_le_bytes());
+    }
+    write_file(
+        &out.join("data/vram.js"),
+        format!("INSPECT.vram(\"{}\");\n", base64(&raw)),
+    )?;
     let changed_total: u64 = summary.changed.iter().sum();
     let index_json = json!({
         "title": title,
@@ -426,6 +475,7 @@ pub fn write_report(
         "cpuHz": gpu::CPU_CLOCK_HZ,
         "lineCycles": line_cycles,
         "times": times,
+        "display": display,
     });
     write_file(
         &out.join("data/index.js"),

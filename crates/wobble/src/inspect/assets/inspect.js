@@ -4,7 +4,8 @@
 var INSPECT = (function () {
   var PAGE = 100;
   var idx = null, writers = null, writersB64 = null, readyMs = -1, chunks = {}, pending = {}, faces = null;
-  var filtered = [], page = 0, current = -1, facePage = 0;
+  var vram = null, vramB64 = null, zoom = 0;
+  var filtered = [], page = 0, current = -1, facePage = 0, faceFilter = "all";
   function $(id) { return document.getElementById(id); }
   function esc(s) {
     return String(s).replace(/[&<>"]/g, function (c) {
@@ -89,10 +90,14 @@ var INSPECT = (function () {
           "</td><td>" + (r.changed || "") + '</td><td class="num">' + (r.cyc || "") + "</td></tr>");
       });
       $("rows").tBodies[0].innerHTML = html.join("");
+      scrollToSelected();
       if (readyMs < 0) {
         readyMs = performance.now();
         // The pixel-writer table (4 bytes a VRAM pixel) loads after the first rows show.
-        setTimeout(function () { loadScript("data/writers.js", function () {}); }, 0);
+        setTimeout(function () {
+          loadScript("data/vram.js", drawVram);
+          loadScript("data/writers.js", function () {});
+        }, 0);
       }
     });
   }
@@ -112,6 +117,7 @@ var INSPECT = (function () {
         Array.prototype.forEach.call($("rows").tBodies[0].rows, function (tr) {
           tr.classList.toggle("sel", +tr.getAttribute("data-i") === i);
         });
+        scrollToSelected();
       }
       renderDetail(r);
       if (history.replaceState) history.replaceState(null, "", "#cmd=" + i);
@@ -139,18 +145,23 @@ var INSPECT = (function () {
     }
     h.push('<div class="pics">');
     if (r.img) {
-      var c = r.img.crop, s = c[4], w = Math.ceil(c[2] / s), hh = Math.ceil(c[3] / s), zoom = Math.max(1, Math.min(4, Math.floor(320 / Math.max(w, hh))));
+      // The image holds three panels (before, after, changed), each w x hh, 4 pixels apart.
+      var c = r.img.crop, s = c[4], w = Math.ceil(c[2] / s), hh = Math.ceil(c[3] / s);
+      var room = Math.max(160, Math.min(480, ($("detail").clientWidth - 60) / 2));
+      var zoom = Math.max(1, Math.min(16, room / Math.max(w, hh)));
+      var W = Math.round(w * zoom), H = Math.round(hh * zoom), IW = (3 * w + 8) * zoom, IH = hh * zoom;
       var svg = "";
-      [0, w + 4].forEach(function (off) {
-        r.prims.forEach(function (p) {
-          svg += svgFor(p.pts, p.kind, function (x) { return ((x - c[0]) / s + off) * zoom; },
-            function (y) { return ((y - c[1]) / s) * zoom; }, p.fate ? "#f55" : "#ff0");
-        });
+      r.prims.forEach(function (p) {
+        svg += svgFor(p.pts, p.kind, function (x) { return ((x - c[0]) / s) * zoom; },
+          function (y) { return ((y - c[1]) / s) * zoom; }, p.fate ? "#f55" : "#ff0");
       });
-      var W = (2 * w + 4) * zoom, H = hh * zoom;
-      h.push('<div><div class="pic"><img id="ba-img" src="' + r.img.png + '" width="' + W + '" height="' + H + '">' +
-        '<svg width="' + W + '" height="' + H + '">' + svg + "</svg></div>" +
-        '<div class="cap">before | after: VRAM (' + c[0] + ", " + c[1] + ") " + c[2] + "x" + c[3] + (s > 1 ? ", 1:" + s : "") + "</div></div>");
+      ["before", "after", "changed (magenta)"].forEach(function (label, n) {
+        h.push('<div class="crop"><div class="label">' + label + '</div><div class="panel" style="width:' + W + "px;height:" + H + 'px">' +
+          '<img class="ba-img"' + (n === 0 ? ' id="ba-img"' : "") + ' src="' + r.img.png + '" width="' + IW + '" height="' + IH +
+          '" style="left:' + (-n * (w + 4) * zoom) + 'px">' + '<svg width="' + W + '" height="' + H + '">' + svg + "</svg></div></div>");
+      });
+      h.push('<div class="cap" id="crop-cap" style="flex-basis:100%">VRAM (' + c[0] + ", " + c[1] + ") " + c[2] + "x" + c[3] +
+        (s > 1 ? ", stored at 1:" + s : "") + ", shown at " + (zoom * 1 / s).toFixed(2).replace(/\.?0+$/, "") + "x; outlines: yellow drawn, red dropped</div>");
     } else if (r.changed) {
       h.push('<div class="cap">no image (image limit reached)</div>');
     }
@@ -165,13 +176,38 @@ var INSPECT = (function () {
     }
     h.push("</div>");
     $("detail").innerHTML = h.join("");
-    var box = $("vram-box");
-    if (r.writes) {
-      var img = $("vram-img"), k = img.clientWidth / 1024;
-      box.style.display = "block";
-      box.style.left = r.writes[0] * k + "px"; box.style.top = r.writes[1] * k + "px";
-      box.style.width = (r.writes[2] - r.writes[0] + 1) * k + "px"; box.style.height = (r.writes[3] - r.writes[1] + 1) * k + "px";
+    placeOverlays();
+  }
+  function scale() { return $("vram-canvas").clientWidth / 1024; }
+  function place(el, x, y, w, h) {
+    var k = scale();
+    el.style.left = x * k + "px"; el.style.top = y * k + "px";
+    el.style.width = w * k + "px"; el.style.height = h * k + "px";
+    el.style.display = "block";
+  }
+  // The display area (GP1 05h-08h) in force after command i.
+  function displayAt(i) {
+    var d = idx.display || [], a = null;
+    for (var n = 0; n < d.length && d[n][0] <= i; n++) a = d[n][1];
+    return a;
+  }
+  function placeOverlays() {
+    var r = current >= 0 ? row(current) : null;
+    if (r && r.writes) place($("vram-box"), r.writes[0], r.writes[1], r.writes[2] - r.writes[0] + 1, r.writes[3] - r.writes[1] + 1);
+    else $("vram-box").style.display = "none";
+    var a = displayAt(current < 0 ? idx.commands - 1 : current), box = $("disp-box");
+    if (a && $("show-display").checked) {
+      // A 24-bit display reads 3 bytes a pixel: its VRAM width is 1.5 times the pixel width.
+      var vw = a[4] ? Math.ceil(a[2] * 3 / 2) : a[2];
+      place(box, a[0], a[1], Math.min(vw, 1024 - a[0]), Math.min(a[3], 512 - a[1]));
+      box.innerHTML = "<span>display " + a[2] + "x" + a[3] + (a[4] ? " 24-bit" : "") + " at (" + a[0] + ", " + a[1] + ")</span>";
     } else box.style.display = "none";
+    var m = $("vram-mark");
+    if (mark) place(m, mark[0] - 0.5, mark[1] - 0.5, 2, 2);
+  }
+  function scrollToSelected() {
+    var tr = $("rows").querySelector("tr.sel");
+    if (tr) tr.scrollIntoView({ block: "nearest" });
   }
   function step(dir) {
     var cls = idx.classes;
@@ -180,8 +216,9 @@ var INSPECT = (function () {
       if (c === "d" || c === "D") { select(i); return; }
     }
   }
-  function jump() {
-    var L = parseInt($("jump").value, 10);
+  function jump() { jumpTo(parseInt($("jump").value, 10)); }
+  // Select the command that holds stream line L (the last one starting at or before it).
+  function jumpTo(L) {
     if (!(L > 0)) return;
     var lines = idx.chunkLines, c = 0;
     while (c + 1 < lines.length && lines[c + 1] <= L) c++;
@@ -203,12 +240,38 @@ var INSPECT = (function () {
     }
     return writers ? writers[y * 1024 + x] : -1;
   }
-  function who(ev) {
-    var img = $("vram-img"), rect = img.getBoundingClientRect();
+  var mark = null;
+  function pixelAt(ev) {
+    var rect = $("vram-canvas").getBoundingClientRect();
     var x = Math.floor((ev.clientX - rect.left) * 1024 / rect.width), y = Math.floor((ev.clientY - rect.top) * 512 / rect.height);
-    x = Math.min(1023, Math.max(0, x)); y = Math.min(511, Math.max(0, y));
-    var m = $("vram-mark");
-    m.style.display = "block"; m.style.left = (x * rect.width / 1024) + "px"; m.style.top = (y * rect.height / 512) + "px";
+    return [Math.min(1023, Math.max(0, x)), Math.min(511, Math.max(0, y))];
+  }
+  function vramAt(x, y) {
+    if (!vram && vramB64 !== null) {
+      var bin = atob(vramB64), bytes = new Uint8Array(bin.length);
+      for (var i = 0; i < bin.length; i++) bytes[i] = bin.charCodeAt(i);
+      vram = new Uint16Array(bytes.buffer);
+      vramB64 = null;
+    }
+    return vram ? vram[y * 1024 + x] : -1;
+  }
+  function hex4(v) { return ("000" + v.toString(16)).slice(-4); }
+  function readout(x, y) {
+    var v = vramAt(x, y);
+    if (v < 0) return "pixel (" + x + ", " + y + "): VRAM data still loading";
+    var r = v & 31, g = (v >> 5) & 31, b = (v >> 10) & 31, e = function (c) { return (c << 3) | (c >> 2); };
+    return "(" + x + ", " + y + ") " + hex4(v) + "h  RGB5 " + r + "," + g + "," + b + "  RGB8 " + e(r) + "," + e(g) + "," + e(b) +
+      "  mask " + (v >> 15);
+  }
+  function hover(ev) {
+    var p = pixelAt(ev);
+    $("readout").textContent = readout(p[0], p[1]);
+  }
+  function who(ev) {
+    var p = pixelAt(ev), x = p[0], y = p[1];
+    mark = p;
+    $("readout").textContent = readout(x, y);
+    placeOverlays();
     var w = writerAt(x, y);
     if (w < 0) { $("who").textContent = "pixel (" + x + ", " + y + "): writer table still loading"; return; }
     if (!w) { $("who").textContent = "pixel (" + x + ", " + y + "): not changed by any command"; return; }
@@ -218,31 +281,113 @@ var INSPECT = (function () {
       select(w - 1);
     });
   }
+  function drawVram() {
+    if (vramAt(0, 0) < 0) return;
+    var cv = $("vram-canvas"), ctx = cv.getContext("2d"), im = ctx.createImageData(1024, 512), d = im.data;
+    for (var i = 0; i < 1024 * 512; i++) {
+      var v = vram[i], r = v & 31, g = (v >> 5) & 31, b = (v >> 10) & 31;
+      d[4 * i] = (r << 3) | (r >> 2); d[4 * i + 1] = (g << 3) | (g >> 2); d[4 * i + 2] = (b << 3) | (b >> 2); d[4 * i + 3] = 255;
+    }
+    ctx.putImageData(im, 0, 0);
+  }
+  // Zoom to z screen pixels a VRAM pixel (0: fit the view's width), keeping VRAM point
+  // (fx, fy) under the same spot of the view (its centre when not given).
+  function setZoom(z, fx, fy, sx, sy) {
+    var sc = $("vram-scroll"), cv = $("vram-canvas");
+    if (fx === undefined) {
+      sx = sc.clientWidth / 2; sy = sc.clientHeight / 2;
+      var k0 = scale() || 1;
+      fx = (sc.scrollLeft + sx) / k0; fy = (sc.scrollTop + sy) / k0;
+    }
+    zoom = z;
+    var k = z || (sc.clientWidth - 2) / 1024;
+    cv.style.width = 1024 * k + "px"; cv.style.height = 512 * k + "px";
+    sc.scrollLeft = fx * k - sx; sc.scrollTop = fy * k - sy;
+    var sel = $("zoom"), opt = z ? String(z) : "fit";
+    if (Array.prototype.some.call(sel.options, function (o) { return o.value === opt; })) sel.value = opt;
+    placeOverlays();
+  }
+  function initVramView() {
+    var sc = $("vram-scroll"), drag = null;
+    $("zoom").onchange = function () { var v = $("zoom").value; setZoom(v === "fit" ? 0 : +v); };
+    $("show-display").onchange = placeOverlays;
+    sc.addEventListener("wheel", function (e) {
+      e.preventDefault();
+      var k = scale(), steps = [1, 2, 4, 8, 16, 32], z = zoom || k, n;
+      if (e.deltaY < 0) { n = steps.filter(function (s) { return s > z + 1e-6; })[0] || 32; }
+      else { n = steps.filter(function (s) { return s < z - 1e-6; }).pop() || 0; }
+      var rect = sc.getBoundingClientRect(), sx = e.clientX - rect.left, sy = e.clientY - rect.top;
+      setZoom(n, (sc.scrollLeft + sx) / k, (sc.scrollTop + sy) / k, sx, sy);
+    }, { passive: false });
+    sc.addEventListener("mousedown", function (e) {
+      if (e.button !== 0) return;
+      drag = { x: e.clientX, y: e.clientY, l: sc.scrollLeft, t: sc.scrollTop, moved: false };
+      e.preventDefault();
+    });
+    window.addEventListener("mousemove", function (e) {
+      if (drag) {
+        var dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+        if (Math.abs(dx) + Math.abs(dy) > 3) { drag.moved = true; sc.classList.add("drag"); }
+        if (drag.moved) { sc.scrollLeft = drag.l - dx; sc.scrollTop = drag.t - dy; }
+      }
+      if (e.target === $("vram-canvas")) hover(e);
+    });
+    window.addEventListener("mouseup", function (e) {
+      if (!drag) return;
+      var d = drag; drag = null; sc.classList.remove("drag");
+      if (!d.moved && e.target === $("vram-canvas")) who(e);
+    });
+    window.addEventListener("resize", function () { if (!zoom) setZoom(0); else placeOverlays(); });
+    setZoom(0);
+  }
+  // Face fates start with one of these words (drawn, culled, dropped, off screen, split).
+  var FATES = ["drawn", "dropped", "culled", "off screen", "split"];
   function showFaces() {
     $("tab-faces").classList.add("on"); $("tab-commands").classList.remove("on");
-    $("list").hidden = true; $("detail").hidden = true; $("faces").hidden = false;
+    $("list").hidden = true; $("faces").hidden = false;
     var render = function () {
-      var P = 200, rows = faces.rows, pages = Math.max(1, Math.ceil(rows.length / P));
+      var fate = faces.columns.indexOf("fate"), line = faces.columns.indexOf("packet line");
+      var rows = faces.rows.filter(function (r) { return faceFilter === "all" || String(r[fate]).indexOf(faceFilter) === 0; });
+      var P = 200, pages = Math.max(1, Math.ceil(rows.length / P));
       facePage = Math.min(Math.max(facePage, 0), pages - 1);
-      var h = ['<div class="pager"><button id="fp">&#9664;</button> page ' + (facePage + 1) + " of " + pages + " (" + rows.length +
-        ' faces) <button id="fn">&#9654;</button></div><table><tr>'];
+      var h = ['<div class="pager"><label>faces <select id="face-filter"><option value="all">all</option>'];
+      FATES.forEach(function (f) { h.push('<option value="' + f + '"' + (f === faceFilter ? " selected" : "") + ">" + f + "</option>"); });
+      h.push('</select></label> <button id="fp">&#9664;</button> page ' + (facePage + 1) + " of " + pages + ' (<span id="face-count">' + rows.length +
+        '</span> faces) <button id="fn">&#9654;</button></div><table id="face-rows"><tr>');
       faces.columns.forEach(function (c) { h.push("<th>" + esc(c) + "</th>"); });
       h.push("</tr>");
       rows.slice(facePage * P, facePage * P + P).forEach(function (r) {
-        h.push("<tr>" + r.map(function (c) { return "<td>" + esc(c) + "</td>"; }).join("") + "</tr>");
+        var l = parseInt(r[line], 10);
+        h.push("<tr" + (l > 0 ? ' class="link" data-line="' + l + '" title="show the command of line ' + l + '"' : "") + ">" +
+          r.map(function (c, n) { return "<td>" + (n === line && l > 0 ? '<a href="#line=' + l + '">' + esc(c) + "</a>" : esc(c)) + "</td>"; }).join("") + "</tr>");
       });
       $("faces").innerHTML = h.join("") + "</table>";
       $("fp").onclick = function () { facePage--; render(); };
       $("fn").onclick = function () { facePage++; render(); };
+      $("face-filter").onchange = function () { faceFilter = $("face-filter").value; facePage = 0; render(); };
+      $("face-rows").onclick = function (e) {
+        var tr = e.target.closest("tr[data-line]"); if (!tr) return;
+        e.preventDefault();
+        jumpTo(+tr.getAttribute("data-line"));
+      };
     };
     if (faces) render(); else loadScript("data/faces.js", render);
   }
   function showCommands() {
     $("tab-commands").classList.add("on"); $("tab-faces").classList.remove("on");
-    $("list").hidden = false; $("detail").hidden = false; $("faces").hidden = true;
+    $("list").hidden = false; $("faces").hidden = true;
+    scrollToSelected();
+  }
+  // `#cmd=N` selects command N, `#line=L` the command holding stream line L.
+  function followHash() {
+    var m = /cmd=(\d+)/.exec(location.hash), l = /line=(\d+)/.exec(location.hash);
+    if (m) { if (+m[1] !== current) select(+m[1]); return true; }
+    if (l) { jumpTo(+l[1]); return true; }
+    return false;
   }
   return {
     index: function (d) { idx = d; },
+    vram: function (b64) { vramB64 = b64; },
     chunk: function (n, rows) { chunks[n] = rows; },
     faces: function (f) { faces = f; },
     writers: function (b64) { writersB64 = b64; },
@@ -260,7 +405,6 @@ var INSPECT = (function () {
       $("page-next").onclick = function () { page++; showPage(); };
       $("jump-go").onclick = jump;
       $("jump").onkeydown = function (e) { if (e.key === "Enter") jump(); };
-      $("vram-img").onclick = who;
       $("rows").onclick = function (e) {
         var tr = e.target.closest("tr[data-i]"); if (tr) select(+tr.getAttribute("data-i"));
       };
@@ -270,12 +414,17 @@ var INSPECT = (function () {
         if (e.target.tagName === "INPUT") return;
         if (e.key === "j") step(1); else if (e.key === "k") step(-1);
       });
+      initVramView();
       applyFilter();
-      var m = /cmd=(\d+)/.exec(location.hash);
-      if (m) select(+m[1]); else step(1);
+      window.addEventListener("hashchange", followHash);
+      if (!followHash()) step(1);
     },
     // For tests: the writer table entry of pixel (x, y), 1 + command index or 0.
     writerAt: function (x, y) { return writerAt(x, y); },
+    // For tests: the final VRAM halfword at (x, y), -1 while loading.
+    vramAt: function (x, y) { return vramAt(x, y); },
+    // For tests: screen pixels per VRAM pixel in the VRAM view.
+    scale: function () { return scale(); },
     current: function () { return current; },
     // For tests: milliseconds from navigation to the first rows shown, -1 before.
     readyMs: function () { return readyMs; }
