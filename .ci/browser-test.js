@@ -247,6 +247,61 @@ function check(cond, what) {
   // The frame report: faces filtered by verdict and linked to their commands.
   await page.goto("file://" + path.resolve(framePath));
   await page.waitForSelector("#rows tbody tr");
+  // A 4- or 8-bit textured draw: its CLUT as a palette strip, and the VRAM-as-texture view.
+  for (let n = 0; n < 400 && (await page.$("#palette")) === null; n++) {
+    const h = await page.textContent("#detail h2");
+    await page.click("#next-draw");
+    await page.waitForFunction((t) => document.querySelector("#detail h2").textContent !== t, h);
+  }
+  check((await page.$("#palette")) !== null, "a CLUT-textured draw found: " + (await page.textContent("#detail h2")));
+  await page.waitForFunction(() => INSPECT.vramAt(0, 0) >= 0);
+  const pal = await page.evaluate(() => {
+    const cv = document.getElementById("palette"), cap = document.querySelector("#detail .pics").textContent;
+    const m = /(\d+)-bit, CLUT \((\d+), (\d+)\)/.exec(cap), pg = /texture page \((\d+), (\d+)\)/.exec(cap);
+    const hexes = cv.getAttribute("data-clut").match(/..../g).map((h) => parseInt(h, 16));
+    const d = cv.getContext("2d").getImageData(0, 0, cv.width, 1).data;
+    return { n: cv.width, depth: +m[1], cx: +m[2], cy: +m[3], px: +pg[1], py: +pg[2], hexes, shown: Array.from(d) };
+  });
+  check(pal.n === (pal.depth === 4 ? 16 : 256) && pal.hexes.length === pal.n, `palette strip of ${pal.n} entries for a ${pal.depth}-bit draw`);
+  const vramAt = (x, y) => page.evaluate(([x, y]) => INSPECT.vramAt(x, y), [x, y]);
+  const e8 = (v) => [v & 31, (v >> 5) & 31, (v >> 10) & 31].map((c) => (c << 3) | (c >> 2));
+  let palOk = true;
+  for (let i = 0; i < pal.n; i++) {
+    const v = await vramAt((pal.cx + i) % 1024, pal.cy);
+    const c = e8(v);
+    if (pal.hexes[i] !== v || pal.shown[4 * i] !== c[0] || pal.shown[4 * i + 1] !== c[1] || pal.shown[4 * i + 2] !== c[2]) palOk = false;
+  }
+  check(palOk, `palette entries equal VRAM at CLUT (${pal.cx}, ${pal.cy}) and show their colours (the frame does not rewrite its CLUTs)`);
+  // The draw's page through its CLUT in the view form; texels checked against a lookup here.
+  await page.click("#view-tex");
+  await page.waitForFunction(() => !document.getElementById("view-out").hidden);
+  async function texelWant(x, y, u, v, depth, cx, cy) {
+    if (depth === 4) return e8(await vramAt((cx + (((await vramAt(x + (u >> 2), y + v)) >> (4 * (u & 3))) & 15)) % 1024, cy));
+    if (depth === 8) return e8(await vramAt((cx + (((await vramAt(x + (u >> 1), y + v)) >> (8 * (u & 1))) & 255)) % 1024, cy));
+    if (depth === 15) return e8(await vramAt(x + u, y + v));
+    const byte = async (k) => { const h = await vramAt(x + (k >> 1), y + v); return k & 1 ? h >> 8 : h & 255; };
+    return [await byte(3 * u), await byte(3 * u + 1), await byte(3 * u + 2)];
+  }
+  async function checkView(x, y, depth, cx, cy, what) {
+    let ok = true;
+    for (const [u, v] of [[0, 0], [1, 0], [5, 3], [17, 9], [30, 31]]) {
+      const want = await texelWant(x, y, u, v, depth, cx, cy);
+      const got = await page.evaluate(([u, v]) => INSPECT.viewPixel(u, v), [u, v]);
+      if (want.join() !== got.join()) { ok = false; console.error(`texel (${u}, ${v}): ${got} want ${want}`); }
+    }
+    check(ok, what + ": " + (await page.textContent("#view-cap")));
+  }
+  await checkView(pal.px, pal.py, pal.depth, pal.cx, pal.cy, "the draw's texture page viewed through its CLUT");
+  for (const depth of [4, 8, 15, 24]) {
+    await page.fill("#vf-x", "3"); await page.fill("#vf-y", "5"); await page.fill("#vf-w", "40"); await page.fill("#vf-h", "40");
+    await page.selectOption("#vf-depth", String(depth));
+    await page.fill("#vf-cx", String(pal.cx)); await page.fill("#vf-cy", String(pal.cy));
+    await page.click("#vf-go");
+    await page.waitForFunction((d) => document.getElementById("view-cap").textContent.includes(d + "-bit") &&
+      document.getElementById("view-cap").textContent.includes("40x40"), depth);
+    await checkView(3, 5, depth, pal.cx, pal.cy, `VRAM (3, 5) 40x40 viewed as ${depth}-bit`);
+  }
+
   await page.click("#tab-faces");
   await page.waitForSelector("#face-rows");
   const total = Number(await page.textContent("#face-count"));

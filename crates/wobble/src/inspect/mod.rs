@@ -524,6 +524,24 @@ fn run_one(
     let tex_json = match texture {
         Some((t, uv)) => {
             let file = textures.view(gpu.vram().as_slice(), &t, out)?;
+            // The CLUT as the draw reads it: 16 or 256 halfwords from (clut_x, clut_y),
+            // x wrapping at the VRAM's width (docs/hardware/gpu.md §7).
+            let entries = match t.depth {
+                TextureDepth::Clut4 => 16,
+                TextureDepth::Clut8 => 256,
+                TextureDepth::Direct15 => 0,
+            };
+            let mut clut = String::with_capacity(entries * 4);
+            let vram = gpu.vram().as_slice();
+            for i in 0..entries {
+                let x = (t.clut_x as usize + i) % VRAM_WIDTH;
+                let y = t.clut_y as usize % VRAM_HEIGHT;
+                let _ = write!(
+                    clut,
+                    "{:04x}",
+                    vram.get(y * VRAM_WIDTH + x).copied().unwrap_or(0)
+                );
+            }
             summary.textures = textures.written.len();
             json!({
                 "png": file,
@@ -535,6 +553,7 @@ fn run_one(
                     TextureDepth::Direct15 => 15,
                 },
                 "uv": [uv.0, uv.1, uv.2, uv.3],
+                "clutv": clut,
             })
         }
         None => Value::Null,

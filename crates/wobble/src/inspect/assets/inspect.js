@@ -171,11 +171,20 @@ var INSPECT = (function () {
       var tex = t.png ? '<div class="pic"><img id="tex-img" src="' + t.png + '" width="256" height="256"><svg width="256" height="256">' +
         '<rect x="' + uv[0] + '" y="' + uv[1] + '" width="' + (uv[2] - uv[0] + 1) + '" height="' + (uv[3] - uv[1] + 1) +
         '" fill="none" stroke="#0ff" stroke-width="1"/></svg></div>' : '<div class="cap">(texture view limit reached)</div>';
+      if (t.clutv) {
+        var n = t.clutv.length / 4;
+        tex += '<div class="cap">CLUT: ' + n + ' entries as the draw read them (hover for a value)</div>' +
+          '<canvas class="palette" id="palette" width="' + n + '" height="1" style="width:' + (n === 16 ? 256 : 512) + 'px;height:16px"' +
+          ' data-clut="' + esc(t.clutv) + '"></canvas><div class="cap" id="palette-value">&nbsp;</div>';
+      }
+      tex += '<button id="view-tex" type="button">view this page below the VRAM</button>';
       h.push("<div>" + tex + '<div class="cap">texture page (' + t.page[0] + ", " + t.page[1] + ") " + t.depth + "-bit" +
         (t.depth !== 15 ? ", CLUT (" + t.clut[0] + ", " + t.clut[1] + ")" : "") + "; UV " + uv[0] + "," + uv[1] + " - " + uv[2] + "," + uv[3] + "</div></div>");
     }
     h.push("</div>");
     $("detail").innerHTML = h.join("");
+    drawPalette();
+    if ($("view-tex")) $("view-tex").onclick = function () { viewTexture(r.tex); };
     placeOverlays();
   }
   function scale() { return $("vram-canvas").clientWidth / 1024; }
@@ -208,6 +217,64 @@ var INSPECT = (function () {
   function scrollToSelected() {
     var tr = $("rows").querySelector("tr.sel");
     if (tr) tr.scrollIntoView({ block: "nearest" });
+  }
+  function rgb8(v) {
+    var e = function (c) { return (c << 3) | (c >> 2); };
+    return [e(v & 31), e((v >> 5) & 31), e((v >> 10) & 31)];
+  }
+  function clutEntry(cv, i) { return parseInt(cv.getAttribute("data-clut").substr(4 * i, 4), 16); }
+  // The selected draw's CLUT, one swatch an entry.
+  function drawPalette() {
+    var cv = $("palette"); if (!cv) return;
+    var n = cv.width, ctx = cv.getContext("2d"), im = ctx.createImageData(n, 1);
+    for (var i = 0; i < n; i++) {
+      var c = rgb8(clutEntry(cv, i));
+      im.data[4 * i] = c[0]; im.data[4 * i + 1] = c[1]; im.data[4 * i + 2] = c[2]; im.data[4 * i + 3] = 255;
+    }
+    ctx.putImageData(im, 0, 0);
+    cv.onmousemove = function (e) {
+      var r = cv.getBoundingClientRect(), i = Math.min(n - 1, Math.max(0, Math.floor((e.clientX - r.left) * n / r.width)));
+      var v = clutEntry(cv, i);
+      $("palette-value").textContent = "entry " + i + ": " + hex4(v) + "h" + (v === 0 ? " (transparent)" : "");
+    };
+  }
+  // A rectangle of the final VRAM decoded as a texture of the given depth: w x h texels
+  // from halfword column x, row y; 4- and 8-bit texels index the CLUT at (cx, cy), low
+  // bits first; 24-bit pixels are 3 bytes (R, G, B) in a row of bytes, low byte of a
+  // halfword first, as the display reads them.
+  function texel(x, y, u, v, depth, cx, cy) {
+    var row = (y + v) & 511, hw = function (col) { return vramAt(col & 1023, row); };
+    if (depth === 4) return rgb8(vramAt((cx + ((hw(x + (u >> 2)) >> ((u & 3) * 4)) & 15)) & 1023, cy & 511));
+    if (depth === 8) return rgb8(vramAt((cx + ((hw(x + (u >> 1)) >> ((u & 1) * 8)) & 255)) & 1023, cy & 511));
+    if (depth === 15) return rgb8(hw(x + u));
+    var b = function (k) { var h = hw(x + (k >> 1)); return k & 1 ? h >> 8 : h & 255; };
+    return [b(3 * u), b(3 * u + 1), b(3 * u + 2)];
+  }
+  function showView(e) {
+    if (e) e.preventDefault();
+    if (vramAt(0, 0) < 0) return;
+    var num = function (id, lo, hi) { var v = parseInt($(id).value, 10); return Math.min(hi, Math.max(lo, isNaN(v) ? lo : v)); };
+    var x = num("vf-x", 0, 1023), y = num("vf-y", 0, 511), w = num("vf-w", 1, 1024), h = num("vf-h", 1, 512);
+    var depth = +$("vf-depth").value, cx = num("vf-cx", 0, 1023), cy = num("vf-cy", 0, 511);
+    var cv = $("view-canvas"), ctx, im;
+    cv.width = w; cv.height = h;
+    var k = Math.max(1, Math.min(4, Math.floor(512 / Math.max(w, h))));
+    cv.style.width = w * k + "px"; cv.style.height = h * k + "px";
+    ctx = cv.getContext("2d"); im = ctx.createImageData(w, h);
+    for (var v = 0; v < h; v++) for (var u = 0; u < w; u++) {
+      var c = texel(x, y, u, v, depth, cx, cy), o = 4 * (v * w + u);
+      im.data[o] = c[0]; im.data[o + 1] = c[1]; im.data[o + 2] = c[2]; im.data[o + 3] = 255;
+    }
+    ctx.putImageData(im, 0, 0);
+    $("view-cap").textContent = "final VRAM at (" + x + ", " + y + "), " + w + "x" + h + " " + depth + "-bit" +
+      (depth < 15 ? ", CLUT (" + cx + ", " + cy + ")" : "") + ", shown " + k + "x";
+    $("view-out").hidden = false;
+  }
+  // Fill the view form with the selected draw's texture page and CLUT.
+  function viewTexture(t) {
+    $("vf-x").value = t.page[0]; $("vf-y").value = t.page[1]; $("vf-w").value = 256; $("vf-h").value = 256;
+    $("vf-depth").value = String(t.depth); $("vf-cx").value = t.clut[0]; $("vf-cy").value = t.clut[1];
+    showView();
   }
   function step(dir) {
     var cls = idx.classes;
@@ -311,6 +378,7 @@ var INSPECT = (function () {
     var sc = $("vram-scroll"), drag = null;
     $("zoom").onchange = function () { var v = $("zoom").value; setZoom(v === "fit" ? 0 : +v); };
     $("show-display").onchange = placeOverlays;
+    $("view-form").onsubmit = showView;
     sc.addEventListener("wheel", function (e) {
       e.preventDefault();
       var k = scale(), steps = [1, 2, 4, 8, 16, 32], z = zoom || k, n;
@@ -425,6 +493,8 @@ var INSPECT = (function () {
     vramAt: function (x, y) { return vramAt(x, y); },
     // For tests: screen pixels per VRAM pixel in the VRAM view.
     scale: function () { return scale(); },
+    // For tests: the RGB of texel (u, v) in the VRAM-as-texture view.
+    viewPixel: function (u, v) { var d = $("view-canvas").getContext("2d").getImageData(u, v, 1, 1).data; return [d[0], d[1], d[2]]; },
     current: function () { return current; },
     // For tests: milliseconds from navigation to the first rows shown, -1 before.
     readyMs: function () { return readyMs; }
