@@ -183,6 +183,7 @@ var INSPECT = (function () {
     }
     h.push("</div>");
     $("detail").innerHTML = h.join("");
+    $("detail").scrollTop = 0;
     drawPalette();
     if ($("view-tex")) $("view-tex").onclick = function () { viewTexture(r.tex); };
     placeOverlays();
@@ -379,6 +380,7 @@ var INSPECT = (function () {
     $("zoom").onchange = function () { var v = $("zoom").value; setZoom(v === "fit" ? 0 : +v); };
     $("show-display").onchange = placeOverlays;
     $("view-form").onsubmit = showView;
+    $("view-close").onclick = function () { $("view-out").hidden = true; };
     sc.addEventListener("wheel", function (e) {
       e.preventDefault();
       var k = scale(), steps = [1, 2, 4, 8, 16, 32], z = zoom || k, n;
