@@ -38,7 +38,10 @@ function check(cond, what) {
   page.on("dialog", (d) => { errors.push("dialog opened: " + d.message()); d.dismiss(); });
 
   // Click VRAM pixel (x, y) in the VRAM view: scroll the view so it shows, then click it.
+  // Below 1x a pixel is narrower than a screen pixel, which the mouse cannot address: the
+  // view is set to 1x first.
   async function clickPixel(x, y) {
+    if ((await page.evaluate(() => INSPECT.scale())) < 1) await page.selectOption("#zoom", "1");
     const at = await page.evaluate(([x, y]) => {
       const sc = document.getElementById("vram-scroll"), k = INSPECT.scale();
       sc.scrollLeft = (x + 0.5) * k - sc.clientWidth / 2;
