@@ -42,6 +42,7 @@ fn object(mesh: usize, position: [f64; 3], rotation: [f64; 3], scale: f64) -> Ob
         color: [128, 128, 128],
         blend: None,
         tessellation: 0,
+        split_extent: wobble::pipeline::DEFAULT_SPLIT_EXTENT,
     }
 }
 
@@ -254,7 +255,7 @@ fn diagonal_error_tessellated(yaw_degrees: f64, level: u8) -> i32 {
         texture: uv_texture(),
     });
     let options = PipelineOptions {
-        split_extent: 0,
+        split_extent: Some(0),
         ..PipelineOptions::default()
     };
     let mut r = Renderer::new(s, options).unwrap();
@@ -357,7 +358,7 @@ fn split_by_projected_size() {
     let stats = r.render_frame(0);
     assert_eq!((stats.polygons, stats.drawn), (1, 1));
     let options = PipelineOptions {
-        split_extent: 0,
+        split_extent: Some(0),
         ..PipelineOptions::default()
     };
     let mut r = Renderer::new(s.clone(), options).unwrap();
@@ -433,7 +434,7 @@ mod properties {
             s.objects[0].rotation = rot;
             s.objects[0].scale = scale;
             s.objects[0].tessellation = level;
-            let options = PipelineOptions { split_extent, ..PipelineOptions::default() };
+            let options = PipelineOptions { split_extent: Some(split_extent), ..PipelineOptions::default() };
             let mut r = Renderer::new(s, options).unwrap();
             let st = r.render_frame(frame);
             prop_assert_eq!(st.polygons, st.drawn + st.culled + st.offscreen + st.dropped);

@@ -66,10 +66,11 @@ pub struct RenderArgs {
     /// Override every object's tessellation level (0-4).
     #[arg(long)]
     pub tessellation: Option<u8>,
-    /// Split polygons larger than this many pixels on screen, up to the tessellation level
-    /// (0: split every polygon to the full level).
-    #[arg(long, default_value_t = wobble::pipeline::DEFAULT_SPLIT_EXTENT)]
-    pub split_extent: u16,
+    /// Override every object's split extent: split polygons larger than this many pixels on
+    /// screen, up to the tessellation level (0: split every polygon to the full level). The
+    /// scene's own extents otherwise (64 unless it says).
+    #[arg(long)]
+    pub split_extent: Option<u16>,
     /// Turn dithering off.
     #[arg(long)]
     pub no_dither: bool,

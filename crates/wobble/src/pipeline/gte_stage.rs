@@ -93,8 +93,8 @@ impl ProjectedFaces {
 struct Rules {
     /// Screen width and height.
     screen: (i32, i32),
-    /// Split a polygon wider or taller than this (pixels) while its level allows.
-    split_extent: i32,
+    /// The projection distance H: a vertex with SZ <= H/2 is too near to divide.
+    h: u16,
     /// (a light, fog).
     lighting: (bool, bool),
     /// Sub-pixel positions kept (one RTPS per vertex, no shared vertices).
@@ -150,7 +150,7 @@ pub(super) fn gte_stage(
                 i32::from(scene.screen.width),
                 i32::from(scene.screen.height),
             ),
-            split_extent: i32::from(input.options.split_extent),
+            h: scene.camera.h,
             lighting: (scene.light.is_some(), scene.fog.is_some()),
             subpixel: input.options.subpixel,
             precise: input.options.precise(),
@@ -206,10 +206,13 @@ fn set_up_object(g: &mut Geometry, scene: &Scene, object: &Object, frame: u32) {
     }
 }
 
-/// Whether a polygon is split again rather than drawn, given its verdict.
-fn needs_split(verdict: &Verdict, split_extent: i32) -> bool {
+/// Whether a polygon is split again rather than drawn, given its verdict, its SZ values and
+/// H. A dropped polygon whose every vertex is too near (SZ <= H/2, behind the camera
+/// included: SZ clamps to 0) is not split: its pieces lie between its vertices in depth and
+/// would all be dropped too.
+fn needs_split(verdict: &Verdict, split_extent: i32, sz: &[u16], h: u16) -> bool {
     match verdict {
-        Verdict::Drop(_) => true,
+        Verdict::Drop(_) => sz.iter().any(|&z| 2 * u32::from(z) > u32::from(h)),
         Verdict::Draw { extent, .. } => *extent > split_extent,
         Verdict::Cull | Verdict::Offscreen => false,
     }
@@ -291,7 +294,14 @@ impl Stage<'_> {
             None => transform(self.g, face, rules.subpixel),
         };
         let verdict = classify(t.flag, t.area, t.xy, face.quad, rules.screen);
-        if level < pass.prepared.level && needs_split(&verdict, rules.split_extent) {
+        if level < pass.prepared.level
+            && needs_split(
+                &verdict,
+                pass.prepared.split_extent,
+                &t.sz[..if face.quad { 4 } else { 3 }],
+                rules.h,
+            )
+        {
             return FaceFate::Split;
         }
         let stats = &mut *self.stats;

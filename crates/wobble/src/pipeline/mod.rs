@@ -117,7 +117,14 @@ impl Renderer {
         gpu.gp1(GP1_RESET);
         let placements = upload::upload_textures(&mut gpu, &scene).map_err(RenderError::Vram)?;
         let objects: Vec<PreparedObject> = (0..scene.objects.len())
-            .filter_map(|i| PreparedObject::new(&scene, i, &placements, options.tessellation))
+            .filter_map(|i| {
+                PreparedObject::new(
+                    &scene,
+                    i,
+                    &placements,
+                    (options.tessellation, options.split_extent),
+                )
+            })
             .collect();
         let capacity = objects.iter().fold(0, |sum: usize, o| {
             sum.saturating_add(o.most_polygons()).min(MAX_POLYGONS)

@@ -15,6 +15,9 @@ pub(super) struct PreparedObject {
     pub(super) mesh: PreparedMesh,
     /// How many times a polygon may be split (0..=[`MAX_LEVEL`]).
     pub(super) level: u8,
+    /// A polygon wider or taller than this many pixels on screen is split while the level
+    /// allows.
+    pub(super) split_extent: i32,
     /// The CLUT and texpage attributes of its polygons (docs/hardware/gpu.md §7), when it
     /// is textured; the texpage carries the blend mode.
     pub(super) texture: Option<(u32, u32)>,
@@ -24,15 +27,17 @@ pub(super) struct PreparedObject {
 
 impl PreparedObject {
     /// Object `index` of `scene`, its texture placed at `placements[object.texture]`, split
-    /// up to `tessellation` levels (the object's own level when `None`).
+    /// up to `tessellation` levels when larger than `split_extent` pixels (the object's own
+    /// level and extent when `None`).
     pub(super) fn new(
         scene: &Scene,
         index: usize,
         placements: &[Placement],
-        tessellation: Option<u8>,
+        (tessellation, split_extent): (Option<u8>, Option<u16>),
     ) -> Option<Self> {
         let object = scene.objects.get(index)?;
         let level = tessellation.unwrap_or(object.tessellation).min(MAX_LEVEL);
+        let split_extent = i32::from(split_extent.unwrap_or(object.split_extent));
         let blend = object.blend;
         let texture = object.texture.and_then(|t| {
             let depth = scene.textures.get(t)?.texture.depth;
@@ -43,6 +48,7 @@ impl PreparedObject {
         Some(Self {
             mesh: prepare(scene, index),
             level,
+            split_extent,
             texture,
             blend,
         })

@@ -5,8 +5,8 @@
 use gte::DivideMode;
 use std::fmt;
 
-/// Default [`PipelineOptions::split_extent`]: polygons wider or taller than this many pixels
-/// are split while their object's tessellation level allows.
+/// Default split extent of an object (`Object::split_extent`): polygons wider or taller than
+/// this many pixels are split while their object's tessellation level allows.
 pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
 
 /// Knobs, all defaulting to what the scene says and to hardware behaviour.
@@ -14,9 +14,10 @@ pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
 pub struct PipelineOptions {
     /// Override every object's tessellation level (0..=4).
     pub tessellation: Option<u8>,
-    /// A polygon whose screen bounding box is wider or taller than this many pixels is split
-    /// (up to its object's tessellation level); 0 splits every polygon to the full level.
-    pub split_extent: u16,
+    /// Override every object's split extent: a polygon whose screen bounding box is wider or
+    /// taller than this many pixels is split (up to its object's tessellation level); 0
+    /// splits every polygon to the full level.
+    pub split_extent: Option<u16>,
     /// Override the scene's dithering.
     pub dither: Option<bool>,
     /// GTE divide (hardware UNR by default).
@@ -88,7 +89,7 @@ impl Default for PipelineOptions {
     fn default() -> Self {
         Self {
             tessellation: None,
-            split_extent: DEFAULT_SPLIT_EXTENT,
+            split_extent: None,
             dither: None,
             divide_mode: DivideMode::default(),
             subpixel: false,

@@ -45,6 +45,7 @@ pub fn default_scene() -> Scene {
         color: [128, 128, 128],
         blend: None,
         tessellation: 0,
+        split_extent: crate::pipeline::DEFAULT_SPLIT_EXTENT,
     };
     let mut objects = vec![
         object(0, Some(0), [-420.0, -190.0, 650.0], 110.0),

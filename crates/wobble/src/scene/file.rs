@@ -24,6 +24,7 @@ struct SceneFile {
     accuracy: Accuracy,
     #[serde(default)]
     tessellation: u8,
+    split_extent: Option<u16>,
     #[serde(default, rename = "texture")]
     textures: Vec<TextureDef>,
     #[serde(default, rename = "mesh")]
@@ -81,6 +82,7 @@ struct ObjectDef {
     color: [u8; 3],
     semi_transparent: Option<u8>,
     tessellation: Option<u8>,
+    split_extent: Option<u16>,
 }
 
 fn one() -> f64 {
@@ -209,6 +211,10 @@ impl Scene {
                 color: o.color,
                 blend: o.semi_transparent,
                 tessellation: o.tessellation.unwrap_or(file.tessellation),
+                split_extent: o
+                    .split_extent
+                    .or(file.split_extent)
+                    .unwrap_or(crate::pipeline::DEFAULT_SPLIT_EXTENT),
             });
         }
         let scene = Scene {

@@ -152,6 +152,11 @@ pub struct Object {
     /// Tessellation level 0..=4: how many times a large or near polygon may be split into
     /// four before projection (`pipeline/mod.rs`, `pipeline/tessellate.rs`).
     pub tessellation: u8,
+    /// A polygon of this object whose screen bounding box is wider or taller than this many
+    /// pixels is split, while its tessellation level allows (0: every polygon to the full
+    /// level; `u16::MAX`: only polygons that would be dropped whole, the near ones). Default
+    /// [`crate::pipeline::DEFAULT_SPLIT_EXTENT`].
+    pub split_extent: u16,
 }
 
 impl Object {

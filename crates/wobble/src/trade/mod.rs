@@ -112,8 +112,11 @@ impl Knob {
                 perspective_uv: true,
                 ..hw
             },
+            // Every object split by size, the same rule at every level (the scene's own
+            // extents may split only near polygons).
             Knob::Tessellation(level) => PipelineOptions {
                 tessellation: Some(level),
+                split_extent: Some(crate::pipeline::DEFAULT_SPLIT_EXTENT),
                 ..hw
             },
         }
