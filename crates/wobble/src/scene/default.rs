@@ -1,9 +1,10 @@
 //! The built-in default scene and its animation (docs/animation.md): no files needed. The
 //! camera travels low over a floor of large checkerboard quads and turns, so the quads slide
-//! into grazing angles where the affine texture warp is strongest and the nearest ones are
-//! dropped whole; a textured cube drifts slowly (vertex jitter); a Gouraud-lit sphere shows
-//! the dither pattern; a wall of bricks laid in running bond, whose pieces share no vertices,
-//! opens seams at its T-junctions; fog fades the distance into the background colour.
+//! into grazing angles where the affine texture warp is strongest, the nearest ones split
+//! where they would be dropped whole; a textured cube drifts slowly (vertex jitter); a
+//! Gouraud-lit sphere shows the dither pattern; a wall of mortared bricks laid in running
+//! bond, whose pieces share no vertices, opens seams at its T-junctions; fog fades the
+//! distance into the background colour.
 //! 4-bit CLUT textures, one directional light (NCCT/NCCS, NCDT/NCDS with fog), dithering on.
 
 use super::animation::Animation;
@@ -26,6 +27,16 @@ const DUSK: [u8; 3] = [40, 36, 64];
 
 /// Projection distance H of the default camera.
 const H: u16 = 300;
+
+/// How many times a floor quad may be split: a 500-unit quad becomes pieces of 62.5 units,
+/// small enough that every piece wholly in front of the near plane covers the floor on
+/// screen (at level 2 a dropped 125-unit piece still opens a hole at the bottom edge).
+const FLOOR_LEVEL: u8 = 3;
+
+/// The floor's split extent: above any screen size, so the floor is split only where a
+/// polygon would be dropped whole (near the camera), as games split near geometry; the
+/// quads that are drawn keep their full size and their affine swim.
+const NEAR_ONLY: u16 = u16::MAX;
 
 /// Bricks per row and rows of the wall.
 const WALL_BRICKS: u32 = 6;
@@ -57,6 +68,8 @@ pub fn default_scene() -> Scene {
     objects[CUBE].spin = [0.4, 0.9, 0.2];
     objects[SPHERE].color = [210, 150, 90];
     objects[SPHERE].spin = [0.0, 1.0, 0.0];
+    objects[FLOOR].tessellation = FLOOR_LEVEL;
+    objects[FLOOR].split_extent = NEAR_ONLY;
     let mut scene = Scene {
         screen: Screen {
             background: DUSK,
@@ -135,23 +148,28 @@ pub fn default_animation() -> Animation {
     }
 }
 
-/// A 32x16 sandstone texture: four tones scattered by an integer hash (4-bit CLUT).
+/// Light mortar between the bricks, far from the background so a seam reads as a crack.
+const MORTAR: [u8; 3] = [214, 206, 188];
+
+/// A 32x16 brick (one brick face of the wall): a one-texel mortar border on every side, so
+/// two bricks meet in a two-texel mortar joint, around a fired-clay face of four tones
+/// scattered by an integer hash (4-bit CLUT).
 fn stone() -> Texture {
-    let tones = [
-        [176, 150, 116],
-        [160, 134, 104],
-        [188, 164, 128],
-        [144, 118, 92],
-    ];
+    let tones = [[150, 62, 44], [136, 54, 40], [164, 74, 52], [122, 48, 36]];
     let pixels: Vec<[u8; 4]> = (0u32..32 * 16)
         .map(|i| {
-            let h = i.wrapping_mul(0x9E37_79B1).rotate_left(7) ^ i.wrapping_mul(0x85EB_CA77);
-            let c = tones[(h >> 29) as usize % tones.len()];
+            let (x, y) = (i % 32, i / 32);
+            let c = if x == 0 || x == 31 || y == 0 || y == 15 {
+                MORTAR
+            } else {
+                let h = i.wrapping_mul(0x9E37_79B1).rotate_left(7) ^ i.wrapping_mul(0x85EB_CA77);
+                tones[(h >> 29) as usize % tones.len()]
+            };
             [c[0], c[1], c[2], 255]
         })
         .collect();
     Texture::from_rgba(32, 16, &pixels, TextureDepth::Clut4)
-        .unwrap_or_else(|_| Texture::checker(16, 2, [176, 150, 116], [144, 118, 92]))
+        .unwrap_or_else(|_| Texture::checker(16, 2, [150, 62, 44], MORTAR))
 }
 
 /// A single-sided wall of `bricks` x `rows` brick faces, each 2 x 1 units, laid in running
