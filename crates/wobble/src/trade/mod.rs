@@ -82,9 +82,17 @@ impl Knob {
         }
     }
 
-    /// The pipeline options of the row.
+    /// The pipeline options of the row. Every row overrides the scene's tessellation: level 0
+    /// (no split at all) unless the row is a tessellation level, where every object's
+    /// polygons are split by size at the default 64 pixels, so that the rows differ only by
+    /// their knob and the levels form one curve (the default scene itself splits its floor
+    /// near the camera only).
     pub fn options(self) -> PipelineOptions {
-        let hw = PipelineOptions::default();
+        let hw = PipelineOptions {
+            tessellation: Some(0),
+            split_extent: Some(crate::pipeline::DEFAULT_SPLIT_EXTENT),
+            ..PipelineOptions::default()
+        };
         match self {
             Knob::Hardware => hw,
             Knob::DivideExact => PipelineOptions {
@@ -112,11 +120,8 @@ impl Knob {
                 perspective_uv: true,
                 ..hw
             },
-            // Every object split by size, the same rule at every level (the scene's own
-            // extents may split only near polygons).
             Knob::Tessellation(level) => PipelineOptions {
                 tessellation: Some(level),
-                split_extent: Some(crate::pipeline::DEFAULT_SPLIT_EXTENT),
                 ..hw
             },
         }
