@@ -10,7 +10,7 @@ use std::fmt;
 pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
 
 /// Knobs, all defaulting to what the scene says and to hardware behaviour.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PipelineOptions {
     /// Override every object's tessellation level (0..=4).
     pub tessellation: Option<u8>,
@@ -84,16 +84,3 @@ impl fmt::Display for UnsupportedKnob {
 }
 
 impl std::error::Error for UnsupportedKnob {}
-
-impl Default for PipelineOptions {
-    fn default() -> Self {
-        Self {
-            tessellation: None,
-            split_extent: None,
-            dither: None,
-            divide_mode: DivideMode::default(),
-            subpixel: false,
-            perspective_uv: false,
-        }
-    }
-}
