@@ -55,6 +55,15 @@ impl Default for DisplayState {
 }
 
 impl DisplayState {
+    /// The registers the video timing depends on: GP1(06h), GP1(07h), GP1(08h).
+    pub(crate) fn video_mode(&self) -> timing::VideoMode {
+        timing::VideoMode {
+            mode: self.mode,
+            h_range: self.h_range,
+            v_range: self.v_range,
+        }
+    }
+
     /// Every field within the bits its GP1 command writes (docs/hardware/gpu.md §9).
     #[cfg(feature = "serde")]
     pub(crate) fn check(&self) -> Result<(), &'static str> {
@@ -264,7 +273,7 @@ impl Gpu {
     /// changes every scanline in 240-line modes and every field in 480i (docs/hardware/timing.md §7; psx-spx "GPU Status
     /// Register": "0=Even or Vblank, 1=Odd").
     pub fn line_parity_bit(&self) -> bool {
-        if self.timing.in_vblank(&self.display) {
+        if self.timing.in_vblank(&self.display.video_mode()) {
             return false;
         }
         self.displayed_line_parity() == 1
@@ -277,7 +286,7 @@ impl Gpu {
         if self.display.mode & 0x24 == 0x24 {
             (start + self.timing.field() as u32) & 1
         } else {
-            (start + self.timing.display_line(&self.display)) & 1
+            (start + self.timing.display_line(&self.display.video_mode())) & 1
         }
     }
 }

@@ -238,7 +238,7 @@ impl Gpu {
     /// ```
     pub fn run(&mut self, cpu_cycles: u32) -> Events {
         let video = self.timing.convert(cpu_cycles);
-        let mut events = self.timing.advance(video, &self.display);
+        let mut events = self.timing.advance(video, &self.display.video_mode());
         let (gpu_irq, drawing_done) =
             self.advance_drawing(u32::try_from(video).unwrap_or(u32::MAX));
         events.gpu_irq = gpu_irq;
@@ -257,7 +257,9 @@ impl Gpu {
     /// assert!(gpu.run(1).any());
     /// ```
     pub fn cycles_until_next_event(&self) -> u32 {
-        let video = self.timing.cycles_until_next_event(&self.display);
+        let video = self
+            .timing
+            .cycles_until_next_event(&self.display.video_mode());
         match self.drawing_cycles_until_event() {
             None => video,
             Some(gpu) => video.min(self.timing.cpu_cycles_for(gpu as u64)),

@@ -6,8 +6,6 @@
 //! exact fraction with an integer remainder, so any split of a run into calls gives the same
 //! result as one call.
 
-use crate::display::DisplayState;
-
 /// CPU clock in Hz: 44100 * 768 (docs/hardware/timing.md §1).
 pub const CPU_CLOCK_HZ: u32 = 33_868_800;
 
@@ -135,6 +133,31 @@ pub const fn dot_divider(mode: u8) -> u32 {
     }
 }
 
+/// What the video timing reads of the GP1 display registers: the horizontal display range of
+/// GP1(06h), the vertical range of GP1(07h) and the display mode of GP1(08h)
+/// (docs/hardware/timing.md §5-§7). The display state hands it over; timing keeps no copy.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct VideoMode {
+    /// GP1(08h) bits 0-7.
+    pub(crate) mode: u8,
+    /// GP1(06h) X1, X2 in video cycles from the horizontal sync.
+    pub(crate) h_range: (u16, u16),
+    /// GP1(07h) Y1, Y2 in scanlines from the vertical sync.
+    pub(crate) v_range: (u16, u16),
+}
+
+impl VideoMode {
+    /// GP1(08h) bit 3: PAL scanline timing.
+    pub(crate) fn pal(&self) -> bool {
+        self.mode & 0x08 != 0
+    }
+
+    /// GP1(08h) bit 5: vertical interlace (fields alternate).
+    pub(crate) fn interlaced(&self) -> bool {
+        self.mode & 0x20 != 0
+    }
+}
+
 /// The timing of one field as the GP1 registers set it. Event offsets are in `(0, len]`: an
 /// event at the very start of a line or field is counted as the end of the previous one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -158,20 +181,18 @@ impl Field {
     /// hblank (docs/hardware/timing.md §5). Vertical: visible from line Y1 to
     /// Y2 of GP1(07h); the rest is vblank. A Y2 at or past the last line is never reached,
     /// so vblank never starts (docs/hardware/timing.md §6: no vblank IRQ for a too large Y2).
-    fn new(display: &DisplayState, field: u8) -> Self {
-        let pal = display.mode & 0x08 != 0;
-        let interlaced = display.mode & 0x20 != 0;
-        let line = cycles_per_line(pal);
-        let lines = lines_per_field(pal, interlaced, field);
-        let x1 = (display.h_range.0 as u32).min(line);
-        let x2 = (display.h_range.1 as u32).min(line);
+    fn new(vm: &VideoMode, field: u8) -> Self {
+        let line = cycles_per_line(vm.pal());
+        let lines = lines_per_field(vm.pal(), vm.interlaced(), field);
+        let x1 = (vm.h_range.0 as u32).min(line);
+        let x2 = (vm.h_range.1 as u32).min(line);
         let hblank = (x1 < x2 && !(x1 == 0 && x2 == line)).then(|| (nonzero(x1, line), x2));
-        let (y1, y2) = vertical_range(display, lines);
+        let (y1, y2) = vertical_range(vm, lines);
         let vblank = (y1 < y2 && y2 < lines).then(|| (nonzero(y1, lines), y2));
         Self {
             line,
             lines,
-            divider: dot_divider(display.mode),
+            divider: dot_divider(vm.mode),
             hblank,
             vblank,
         }
@@ -258,9 +279,9 @@ impl Field {
 
 /// GP1(07h) Y1, Y2 as the field sees them: Y1 clamped to the field; a Y2 at or past the
 /// last line is never reached (no vblank), marked as Y2 = `lines`.
-fn vertical_range(display: &DisplayState, lines: u32) -> (u32, u32) {
-    let y1 = (display.v_range.0 as u32).min(lines);
-    let y2 = (display.v_range.1 as u32).min(lines);
+fn vertical_range(vm: &VideoMode, lines: u32) -> (u32, u32) {
+    let y1 = (vm.v_range.0 as u32).min(lines);
+    let y2 = (vm.v_range.1 as u32).min(lines);
     (y1, y2)
 }
 
@@ -324,17 +345,17 @@ impl Timing {
     }
 
     /// The current scanline within the field, and the video cycle within that line.
-    pub(crate) fn beam(&self, display: &DisplayState) -> (u32, u32) {
-        let f = Field::new(display, self.field);
+    pub(crate) fn beam(&self, vm: &VideoMode) -> (u32, u32) {
+        let f = Field::new(vm, self.field);
         let p = self.position.min(f.len().saturating_sub(1));
         ((p / f.line as u64) as u32, (p % f.line as u64) as u32)
     }
 
     /// Whether the current line is outside the GP1(07h) vertical range.
-    pub(crate) fn in_vblank(&self, display: &DisplayState) -> bool {
-        let (line, _) = self.beam(display);
-        let f = Field::new(display, self.field);
-        let (y1, y2) = vertical_range(display, f.lines);
+    pub(crate) fn in_vblank(&self, vm: &VideoMode) -> bool {
+        let (line, _) = self.beam(vm);
+        let f = Field::new(vm, self.field);
+        let (y1, y2) = vertical_range(vm, f.lines);
         if y2 >= f.lines {
             return false;
         }
@@ -343,9 +364,9 @@ impl Timing {
 
     /// The visible line count since the top of the display range (only meaningful outside
     /// vblank).
-    pub(crate) fn display_line(&self, display: &DisplayState) -> u32 {
-        let (line, _) = self.beam(display);
-        line.saturating_sub(display.v_range.0 as u32)
+    pub(crate) fn display_line(&self, vm: &VideoMode) -> u32 {
+        let (line, _) = self.beam(vm);
+        line.saturating_sub(vm.v_range.0 as u32)
     }
 
     /// Video cycles for `cpu_cycles` CPU cycles, carrying the remainder.
@@ -366,16 +387,16 @@ impl Timing {
 
     /// A mode change can leave the position past the end of a now shorter field: the field
     /// then ends at once, without events.
-    fn normalise(&mut self, display: &DisplayState) {
-        let f = Field::new(display, self.field);
+    fn normalise(&mut self, vm: &VideoMode) {
+        let f = Field::new(vm, self.field);
         if self.position >= f.len() {
             self.position = 0;
-            self.next_field(display);
+            self.next_field(vm);
         }
     }
 
-    fn next_field(&mut self, display: &DisplayState) {
-        if display.mode & 0x20 != 0 {
+    fn next_field(&mut self, vm: &VideoMode) {
+        if vm.interlaced() {
             self.field ^= 1;
         } else {
             self.field = 0;
@@ -383,11 +404,11 @@ impl Timing {
     }
 
     /// Advance by `video` video cycles.
-    pub(crate) fn advance(&mut self, mut video: u64, display: &DisplayState) -> Events {
-        self.normalise(display);
+    pub(crate) fn advance(&mut self, mut video: u64, vm: &VideoMode) -> Events {
+        self.normalise(vm);
         let mut events = Events::default();
         while video > 0 {
-            let f = Field::new(display, self.field);
+            let f = Field::new(vm, self.field);
             let p = self.position;
             let step = video.min(f.len() - p);
             events.merge(f.events(p, p + step));
@@ -395,7 +416,7 @@ impl Timing {
             self.position = p + step;
             if self.position >= f.len() {
                 self.position = 0;
-                self.next_field(display);
+                self.next_field(vm);
             }
         }
         events
@@ -403,17 +424,17 @@ impl Timing {
 
     /// CPU cycles until [`Timing::advance`] would report an hblank or vblank edge, or
     /// `u32::MAX` when none comes (endless hblank and no vblank edge).
-    pub(crate) fn cycles_until_next_event(&self, display: &DisplayState) -> u32 {
+    pub(crate) fn cycles_until_next_event(&self, vm: &VideoMode) -> u32 {
         let mut t = *self;
-        t.normalise(display);
-        let f = Field::new(display, t.field);
+        t.normalise(vm);
+        let f = Field::new(vm, t.field);
         let video = match f.next_event(t.position) {
             Some(at) => at - t.position,
             None => {
                 let mut next = t;
                 next.position = 0;
-                next.next_field(display);
-                let g = Field::new(display, next.field);
+                next.next_field(vm);
+                let g = Field::new(vm, next.field);
                 match g.next_event(0) {
                     Some(at) => f.len() - t.position + at,
                     None => return u32::MAX,
@@ -428,10 +449,11 @@ impl Timing {
 mod tests {
     use super::*;
 
-    fn display(mode: u8) -> DisplayState {
-        DisplayState {
+    fn display(mode: u8) -> VideoMode {
+        VideoMode {
             mode,
-            ..DisplayState::default()
+            h_range: (0x200, 0xC00),
+            v_range: (0x10, 0x100),
         }
     }
 
