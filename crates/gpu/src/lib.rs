@@ -156,7 +156,10 @@ impl core::fmt::Debug for Vram {
 }
 
 /// The GPU: GP0 (rendering, VRAM transfers) and GP1 (display control) ports over a [`Vram`].
-#[derive(Clone, Debug)]
+///
+/// Two GPUs compare equal when their chip states are equal: everything a save state holds
+/// (VRAM, registers, transfers and packets in progress, the CLUT cache, FIFO and drawing time,
+/// video timing, events not yet reported), not the tables derived from it for speed.
 ///
 /// With the `serde` feature the whole state serializes; deserializing checks every field
 /// against what the hardware can reach (`StateError`); `Gpu::save_state` adds a format
@@ -166,6 +169,7 @@ impl core::fmt::Debug for Vram {
     derive(serde::Serialize, serde::Deserialize),
     serde(try_from = "save::GpuFields")
 )]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Gpu {
     draw: DrawState,
     clut: ClutCache,

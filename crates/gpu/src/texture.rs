@@ -69,6 +69,18 @@ impl core::fmt::Debug for DitheredClut4 {
     }
 }
 
+/// Two caches are equal when they hold the same entries for the same CLUT; the derived
+/// dithered table is not part of the chip state.
+impl PartialEq for ClutCache {
+    fn eq(&self, other: &Self) -> bool {
+        self.entries == other.entries
+            && self.key == other.key
+            && self.loaded_8bit == other.loaded_8bit
+    }
+}
+
+impl Eq for ClutCache {}
+
 impl Default for ClutCache {
     fn default() -> Self {
         Self {

@@ -150,6 +150,7 @@ fn header_then_body_round_trips() {
     assert_eq!(&bytes[..header.len()], &header[..]);
     header.clear();
     let back = load(&bytes).expect("loads");
+    assert!(back == g, "the loaded GPU equals the saved one");
     assert_eq!(save(&back), bytes);
     assert_eq!(body_json(&back), body_json(&g));
     assert_eq!(back.gpustat(), g.gpustat());
@@ -505,6 +506,7 @@ proptest! {
             perform(&mut reference, a);
         }
         let mut restored = load(&save(&reference)).expect("a reachable state loads");
+        prop_assert!(restored == reference, "a restored GPU equals the saved one");
         prop_assert_eq!(restored.gpustat(), reference.gpustat());
         prop_assert_eq!(restored.cycles_until_next_event(), reference.cycles_until_next_event());
         for (i, &a) in actions[split..].iter().enumerate() {
@@ -519,5 +521,55 @@ proptest! {
         }
         prop_assert!(restored.vram().as_slice() == reference.vram().as_slice(), "VRAM differs");
         prop_assert_eq!(save(&restored), save(&reference));
+        prop_assert!(restored == reference, "equal after running the same actions");
     }
+}
+
+/// `Gpu` equality is that of the chip state: a GPU restored from a save equals the original
+/// even though the shaded 4-bit CLUT table, a speed aid derived from the CLUT cache, is not
+/// saved; and any difference in VRAM, registers or beam position makes two GPUs unequal.
+#[test]
+fn equality_is_the_chip_state() {
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
+    // CLUT at (0, 300), 4-bit texels at (512, 0), page 512.
+    g.gp0_words(&[0xA000_0000, xy(0, 300), 1 << 16 | 16]);
+    g.gp0_words(&[0x7C00_001F; 8]);
+    g.gp0_words(&[
+        0xA000_0000,
+        xy(512, 0),
+        1 << 16 | 4,
+        0x7654_3210,
+        0xFEDC_BA98,
+    ]);
+    // Three dithered, modulated 4-bit triangles of one colour: the third has the shaded
+    // CLUT table built (docs/gpu.md).
+    g.gp0(0xE100_0208);
+    for y in [0, 40, 80] {
+        g.gp0_words(&[
+            0x2480_8080,
+            xy(0, y),
+            300 << 22,
+            xy(30, y),
+            8 << 16 | 15,
+            xy(0, y + 30),
+            0,
+        ]);
+    }
+    let back = load(&save(&g)).expect("loads");
+    assert!(back == g);
+    assert_eq!(back.clone(), back);
+
+    let mut other = back.clone();
+    other.vram_mut().set_pixel(1023, 511, 1);
+    assert!(other != g, "one VRAM pixel");
+    let mut other = back.clone();
+    other.gp1(0x0500_0001);
+    assert!(other != g, "display start");
+    let mut other = back.clone();
+    other.run(1);
+    assert!(other != g, "one CPU cycle of video time");
+    let mut other = back;
+    other.gp0(0xE100_0209);
+    assert!(other != g, "texture page");
 }
