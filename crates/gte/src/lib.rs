@@ -70,13 +70,26 @@ pub use unr::{DivideMode, UnsupportedDivideMode};
 /// assert_eq!(gte.read_data(14), (140 << 16) | 260); // MFC2 SXY2
 /// assert!(gte.flag().is_empty()); // CFC2 FLAG
 /// ```
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+///
+/// Two engines are equal when their architectural states are: the 64 registers as stored
+/// (FLAG included) and the divide mode, what [`Gte::state`] returns.
+#[derive(Clone, Debug, Default)]
 pub struct Gte {
     regs: RegisterFile,
     divide_mode: DivideMode,
     /// FLAG bits collected while a command runs.
     flag_bits: u32,
 }
+
+/// The architectural state only: the FLAG bits a command collects while it runs are scratch,
+/// copied into FLAG when it ends.
+impl PartialEq for Gte {
+    fn eq(&self, other: &Self) -> bool {
+        self.regs == other.regs && self.divide_mode == other.divide_mode
+    }
+}
+
+impl Eq for Gte {}
 
 /// Bits 0-5 of each defined command, as the patterns of [`Gte::execute`]'s dispatch: a match
 /// on the bits themselves compiles to one jump table over the 64 values, undefined ones

@@ -90,6 +90,7 @@ proptest! {
             prop_assert_eq!(all_registers(&restored), all_registers(&original));
         }
         prop_assert_eq!(original.state(), restored.state());
+        prop_assert_eq!(&original, &restored);
     }
 
     /// Saving through the 64 register reads and writing them back is not a restore (IRGB
@@ -270,4 +271,29 @@ fn serialized_versions_and_size() {
     assert!(err.contains("version 7"), "{err}");
     eprintln!("serialized GTE state: {} bytes of JSON", json.len());
     assert!(json.len() < 2048);
+}
+
+/// `Gte` equality is that of the architectural state: an engine restored from the state of one
+/// that has just run a command (whose FLAG bits were collected in a per-command scratch word)
+/// equals it; a difference in one register or in the divide mode does not.
+#[test]
+fn equality_is_the_architectural_state() {
+    let mut gte = Gte::new();
+    gte.write_control(26, 1); // H = 1
+    gte.write_data(1, 1); // VZ0 = 1: H / SZ3 overflows (FLAG bit 17)
+    gte.write_data(0, 0x7FFF_7FFF); // VX0 = VY0 = 7FFFh: SX2/SY2 saturate
+    assert_eq!(gte.execute(0x0008_0001), Some(15)); // RTPS
+    assert!(!gte.flag().is_empty(), "the command set FLAG bits");
+    let mut restored = Gte::new();
+    restored.load_state(&gte.state()).unwrap();
+    assert_eq!(restored, gte);
+    let mut other = restored.clone();
+    other.write_data(8, 1); // IR0
+    assert_ne!(other, gte);
+    #[cfg(feature = "divide-modes")]
+    {
+        let mut other = restored.clone();
+        other.set_divide_mode(DivideMode::Exact).unwrap();
+        assert_ne!(other, gte);
+    }
 }
