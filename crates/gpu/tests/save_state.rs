@@ -134,6 +134,24 @@ fn busy_gpu() -> Gpu {
     g
 }
 
+/// Where the version-1 save state of [`busy_gpu`] is kept: postcard, zlib-compressed.
+const VERSION_1_FIXTURE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../fixtures/save-states/busy-v1.postcard.zlib"
+);
+
+/// Writes [`VERSION_1_FIXTURE`] from the format this build writes (run once, while that was
+/// version 1: `cargo test -p gpu --features serde --test save_state -- --ignored`).
+#[test]
+#[ignore = "writes the version-1 fixture"]
+fn write_version_1_fixture() {
+    assert_eq!(SAVE_STATE_VERSION, 1);
+    let bytes = save(&busy_gpu());
+    let packed = miniz_oxide::deflate::compress_to_vec_zlib(&bytes, 9);
+    std::fs::create_dir_all(std::path::Path::new(VERSION_1_FIXTURE).parent().unwrap()).unwrap();
+    std::fs::write(VERSION_1_FIXTURE, packed).unwrap();
+}
+
 /// The fields of the `Gpu` value (the order a positional format writes them).
 fn body_json(g: &Gpu) -> serde_json::Value {
     serde_json::to_value(g).expect("serializes")
