@@ -1,5 +1,6 @@
-//! Save-state size and the time to save and load one (postcard), for an idle GPU with zero
-//! VRAM and for one with a drawn VRAM, a transfer in progress and queued FIFO words.
+//! Save-state size and the time to save and load one (postcard), and a save and load in a
+//! row as rewind or run-ahead does every frame, for an idle GPU with zero VRAM and for one with
+//! a drawn VRAM, a transfer in progress and queued FIFO words.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use gpu::{Gpu, SaveState};
@@ -41,6 +42,15 @@ fn state(c: &mut Criterion) {
         group.bench_function(format!("load_{name}"), |b| {
             b.iter(|| {
                 let s: SaveState = postcard::from_bytes(black_box(&bytes)).expect("loads");
+                black_box(s.into_gpu())
+            })
+        });
+        group.bench_function(format!("save_load_{name}"), |b| {
+            b.iter(|| {
+                let used = postcard::to_slice(&g.save_state(), &mut buf)
+                    .expect("fits")
+                    .len();
+                let s: SaveState = postcard::from_bytes(black_box(&buf[..used])).expect("loads");
                 black_box(s.into_gpu())
             })
         });

@@ -66,7 +66,9 @@ pub use ordering_table::{
     END_MARKER, MAX_DEPTH, MAX_PACKET_WORDS, MAX_WORDS, OrderingTable, OtError, WalkStats, walk_ram,
 };
 #[cfg(feature = "serde")]
-pub use save::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState, StateError};
+pub use save::{
+    SAVE_STATE_MAGIC, SAVE_STATE_OLDEST_VERSION, SAVE_STATE_VERSION, SaveState, StateError,
+};
 pub use state::{
     BlendMode, ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, Texpage, TextureDepth,
     TextureWindow,
@@ -127,25 +129,6 @@ impl Vram {
 impl Default for Vram {
     fn default() -> Self {
         Self::new()
-    }
-}
-
-/// VRAM is serialized as a sequence of `VRAM_LEN` halfwords, row-major.
-#[cfg(feature = "serde")]
-impl serde::Serialize for Vram {
-    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.collect_seq(self.pixels.iter())
-    }
-}
-
-/// VRAM is read back from a sequence of exactly `VRAM_LEN` halfwords; any other length is an
-/// error.
-#[cfg(feature = "serde")]
-impl<'de> serde::Deserialize<'de> for Vram {
-    fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let mut vram = Vram::new();
-        deserializer.deserialize_seq(serde_array::Fill(vram.as_mut_slice()))?;
-        Ok(vram)
     }
 }
 

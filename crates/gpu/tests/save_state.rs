@@ -80,32 +80,64 @@ fn resumes_mid_packet_mid_transfer_with_latched_clut() {
     }
 }
 
-/// VRAM data of the wrong length, or not halfwords, is refused with an error.
+/// VRAM data of the wrong length, or not bytes, is refused with an error. VRAM is one block
+/// of 2 x 1024 x 512 bytes, each halfword little-endian (JSON writes it as a number array).
 #[test]
 fn bad_vram_is_an_error() {
-    let g = Gpu::new();
+    let mut g = Gpu::new();
+    g.vram_mut().set_pixel(5, 0, 0x1234);
     let mut value = serde_json::to_value(&g).expect("serializes");
-    let vram = value["vram"].as_array_mut().expect("vram is a sequence");
-    assert_eq!(vram.len(), 1024 * 512);
+    let vram = value["vram"]
+        .as_array_mut()
+        .expect("vram is a byte sequence");
+    assert_eq!(vram.len(), 2 * 1024 * 512);
+    assert_eq!(
+        (vram[10].as_u64(), vram[11].as_u64()),
+        (Some(0x34), Some(0x12))
+    );
     vram.pop();
     assert!(serde_json::from_value::<Gpu>(value.clone()).is_err());
-    let vram = value["vram"].as_array_mut().expect("vram is a sequence");
+    let vram = value["vram"]
+        .as_array_mut()
+        .expect("vram is a byte sequence");
     vram.push(0.into());
     vram.push(0.into());
     assert!(serde_json::from_value::<Gpu>(value.clone()).is_err());
-    let vram = value["vram"].as_array_mut().expect("vram is a sequence");
+    let vram = value["vram"]
+        .as_array_mut()
+        .expect("vram is a byte sequence");
     vram.pop();
-    vram[5] = 70000.into();
+    vram[10] = 256.into();
     assert!(serde_json::from_value::<Gpu>(value.clone()).is_err());
-    value["vram"][5] = 7.into();
+    value["vram"][10] = 7.into();
     let back: Gpu = serde_json::from_value(value).expect("exact length accepted");
-    assert_eq!(back.vram().pixel(5, 0), 7);
+    assert_eq!(back.vram().pixel(5, 0), 0x1207);
+    // Binary: a block one byte short or long.
+    let bytes = postcard::to_allocvec(&g).unwrap();
+    let block = postcard::to_allocvec(g.vram()).unwrap();
+    let body = &bytes[..bytes.len() - block.len()];
+    for len in [2 * 1024 * 512 - 1, 2 * 1024 * 512 + 1] {
+        let mut wrong = body.to_vec();
+        wrong.extend(postcard::to_allocvec(&serde_bytes_of(len)).unwrap());
+        assert!(postcard::from_bytes::<Gpu>(&wrong).is_err(), "{len} bytes");
+    }
+}
+
+/// A byte block of `len` zero bytes, serialized as bytes.
+fn serde_bytes_of(len: usize) -> impl serde::Serialize {
+    struct Block(usize);
+    impl serde::Serialize for Block {
+        fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+            s.serialize_bytes(&vec![0u8; self.0])
+        }
+    }
+    Block(len)
 }
 
 // ---------------------------------------------------------------------------------------
 // Versioned save states (`Gpu::save_state` / `SaveState`).
 
-use gpu::{SAVE_STATE_MAGIC, SAVE_STATE_VERSION, SaveState};
+use gpu::{SAVE_STATE_MAGIC, SAVE_STATE_OLDEST_VERSION, SAVE_STATE_VERSION, SaveState};
 use proptest::prelude::*;
 
 fn save(g: &Gpu) -> Vec<u8> {
@@ -139,18 +171,6 @@ const VERSION_1_FIXTURE: &str = concat!(
     env!("CARGO_MANIFEST_DIR"),
     "/../../fixtures/save-states/busy-v1.postcard.zlib"
 );
-
-/// Writes [`VERSION_1_FIXTURE`] from the format this build writes (run once, while that was
-/// version 1: `cargo test -p gpu --features serde --test save_state -- --ignored`).
-#[test]
-#[ignore = "writes the version-1 fixture"]
-fn write_version_1_fixture() {
-    assert_eq!(SAVE_STATE_VERSION, 1);
-    let bytes = save(&busy_gpu());
-    let packed = miniz_oxide::deflate::compress_to_vec_zlib(&bytes, 9);
-    std::fs::create_dir_all(std::path::Path::new(VERSION_1_FIXTURE).parent().unwrap()).unwrap();
-    std::fs::write(VERSION_1_FIXTURE, packed).unwrap();
-}
 
 /// The fields of the `Gpu` value (the order a positional format writes them).
 fn body_json(g: &Gpu) -> serde_json::Value {
@@ -216,10 +236,15 @@ fn other_version_or_magic_is_refused_before_the_body() {
         .unwrap_err()
         .to_string();
     let expected = format!(
-        "GPU save state version {}, this build reads version {SAVE_STATE_VERSION}",
+        "GPU save state version {}, this build reads versions 1 to {SAVE_STATE_VERSION}",
         SAVE_STATE_VERSION + 1
     );
     assert!(err.contains(&expected), "{err}");
+    json["version"] = (SAVE_STATE_OLDEST_VERSION - 1).into();
+    let err = serde_json::from_value::<SaveState>(json.clone())
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("GPU save state version 0,"), "{err}");
     // Positional: a newer version followed by a body this build cannot parse still names
     // the version.
     let bytes =
@@ -240,6 +265,76 @@ fn other_version_or_magic_is_refused_before_the_body() {
     let text = format!("{{\"gpu\":{}}}", serde_json::to_string(&g).unwrap());
     let err = serde_json::from_str::<SaveState>(&text).unwrap_err();
     assert!(err.to_string().contains("missing field `magic`"), "{err}");
+}
+
+/// The version-1 state of `busy_gpu` written by the build that wrote version 1 (fixtures/
+/// save-states) loads: the same VRAM, registers, transfers and GPUSTAT as `busy_gpu` built
+/// now, and the same results when both continue.
+#[test]
+fn version_1_states_load() {
+    let packed = std::fs::read(VERSION_1_FIXTURE).expect("fixture present");
+    let bytes = miniz_oxide::inflate::decompress_to_vec_zlib(&packed).expect("zlib");
+    assert_eq!(
+        &bytes[..6],
+        &postcard::to_allocvec(&(SAVE_STATE_MAGIC, 1u32)).unwrap()[..]
+    );
+    let mut old = load(&bytes).expect("a version-1 state loads");
+    let mut now = busy_gpu();
+    assert!(old.vram() == now.vram());
+    assert_eq!(old.gpustat(), now.gpustat());
+    assert_eq!(old.pending_input(), now.pending_input());
+    assert_eq!(old.draw_state(), now.draw_state());
+    assert_eq!(old.display_state(), now.display_state());
+    assert_eq!(old.irq_pending(), now.irq_pending());
+    // Saved again it is a version-2 state that loads equal.
+    let resaved = save(&old);
+    assert_eq!(&resaved[..6], &save(&now)[..6]);
+    assert!(load(&resaved).unwrap() == old);
+    let mut seen = [vec![], vec![]];
+    for (g, seen) in [&mut old, &mut now].into_iter().zip(&mut seen) {
+        seen.push(g.gpuread());
+        g.gp0_words(&[0x0200_0000, 0, 64 << 16 | 64]);
+        for _ in 0..600 {
+            let n = g.cycles_until_next_event().min(10_000);
+            seen.push(n);
+            let ev = g.run(n.max(1));
+            seen.push(ev.hblanks + ev.vblank_start as u32 * 1000 + ev.gpu_irq as u32 * 2000);
+        }
+    }
+    assert_eq!(seen[0], seen[1]);
+    assert!(old.vram() == now.vram());
+    assert_eq!(old.gpustat(), now.gpustat());
+}
+
+/// A version-1 state in a self-describing format (JSON, VRAM as a halfword array), built here
+/// from the version-2 one, loads as the same GPU, with its header first or its keys sorted.
+#[test]
+fn version_1_json_loads() {
+    let g = busy_gpu();
+    let mut body = serde_json::to_value(&g).unwrap();
+    let halfwords: Vec<serde_json::Value> = g.vram().as_slice().iter().map(|&p| p.into()).collect();
+    body["vram"] = halfwords.into();
+    let text = format!("{{\"magic\":{SAVE_STATE_MAGIC},\"version\":1,\"gpu\":{body}}}");
+    let back: SaveState = serde_json::from_str(&text).expect("version 1 loads");
+    assert!(back.into_gpu() == g);
+    // serde_json's Value keeps keys sorted: the body comes before the version.
+    let sorted: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert!(sorted.as_object().unwrap().keys().next().unwrap() == "gpu");
+    let back: SaveState = serde_json::from_value(sorted.clone()).expect("version 1 loads");
+    assert!(back.into_gpu() == g);
+    // A layout other than the version's is refused, in either direction.
+    let mut wrong = sorted.clone();
+    wrong["version"] = SAVE_STATE_VERSION.into();
+    let err = serde_json::from_value::<SaveState>(wrong)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("VRAM as halfwords (version 1)"), "{err}");
+    let mut wrong = sorted;
+    wrong["gpu"]["vram"] = serde_json::to_value(g.vram()).unwrap();
+    let err = serde_json::from_value::<SaveState>(wrong)
+        .unwrap_err()
+        .to_string();
+    assert!(err.contains("VRAM as bytes (version 2 on)"), "{err}");
 }
 
 /// Each field set to a value the hardware cannot reach is refused with its reason.
