@@ -195,10 +195,11 @@ impl Gte {
     /// side effects of MTC2/CTC2 (IRGB, SXYP, LZCS). FLAG keeps only what the hardware can hold
     /// (bits 12-30 and their summary bit 31, as [`Flag::from_bits`]).
     ///
-    /// Fails, changing nothing, for another [`GteState::VERSION`] or a divide mode this build
-    /// cannot run.
+    /// Fails, changing nothing, for a version outside [`GteState::OLDEST_VERSION`] to
+    /// [`GteState::VERSION`] (versions differ only in how they serialize) or a divide mode
+    /// this build cannot run.
     pub fn load_state(&mut self, state: &GteState) -> Result<(), StateError> {
-        if state.version != GteState::VERSION {
+        if !(GteState::OLDEST_VERSION..=GteState::VERSION).contains(&state.version) {
             return Err(StateError::Version {
                 found: state.version,
                 expected: GteState::VERSION,

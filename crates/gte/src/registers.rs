@@ -744,6 +744,41 @@ impl RegisterFile {
     }
 }
 
+#[cfg(feature = "serde")]
+impl Registers {
+    /// The 64 registers as words, data r0-r31 then control c0-c31, as the engine stores them:
+    /// a 16-bit register's value sign- or zero-extended as MFC2/CFC2 reads it, FLAG as
+    /// [`Flag::from_bits`] keeps it, and 0 for r15 (SXYP), r28 (IRGB) and r29 (ORGB), which
+    /// are not stored but read from SXY2 and IR1-3 (docs/hardware/gte.md §2). The binary save
+    /// state holds them as one block.
+    pub(crate) fn to_words(&self) -> [u32; 64] {
+        let f = RegisterFile::from_snapshot(self);
+        core::array::from_fn(|i| {
+            if i < 32 {
+                f.data.word(i)
+            } else {
+                f.control.word(i - 32)
+            }
+        })
+    }
+
+    /// The registers of a block from [`Registers::to_words`], or `None` when a word is not as
+    /// the engine stores it (bits above a 16-bit register's extension, a non-zero r15, r28 or
+    /// r29, FLAG bits it cannot hold).
+    pub(crate) fn from_words(words: &[u32; 64]) -> Option<Registers> {
+        let mut f = RegisterFile::default();
+        for (i, &w) in words.iter().enumerate() {
+            if i < 32 {
+                f.data.set(i, w);
+            } else {
+                f.control.set(i - 32, w);
+            }
+        }
+        let r = f.snapshot();
+        (r.to_words() == *words).then_some(r)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
