@@ -1,7 +1,7 @@
 //! GP1 display control (docs/hardware/gpu.md §9) and the GPUSTAT register.
 
 use crate::state::{BlendMode, TextureDepth};
-use crate::{Gpu, drawing, timing};
+use crate::{Beam, Gpu, drawing, timing};
 
 /// The part of VRAM the display shows, from GP1(05h)-(08h).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -227,7 +227,8 @@ impl Gpu {
         s |= (m.draw_to_display as u32) << 10;
         s |= (self.draw.mask.set as u32) << 11;
         s |= (self.draw.mask.check as u32) << 12;
-        s |= (self.interlace_field_bit() as u32) << 13;
+        let beam = self.beam();
+        s |= (field_bit(self.display.mode, beam) as u32) << 13;
         let mode = self.display.mode as u32;
         s |= ((mode >> 7) & 1) << 14;
         s |= (m.texture_disable as u32) << 15;
@@ -254,7 +255,7 @@ impl Gpu {
         s |= (ready_read as u32) << 27;
         s |= (ready_dma as u32) << 28;
         s |= (self.display.dma_direction as u32) << 29;
-        s |= (self.line_parity_bit() as u32) << 31;
+        s |= (self.parity_bit(beam) as u32) << 31;
         s
     }
 
@@ -262,31 +263,40 @@ impl Gpu {
     /// (docs/hardware/timing.md §7). Which field value the console reports first is not
     /// recorded; the model's field 0 (the one showing the display start line) reads 0.
     pub fn interlace_field_bit(&self) -> bool {
-        if self.display.mode & 0x20 == 0 {
-            true
-        } else {
-            self.timing.field() == 1
-        }
+        field_bit(self.display.mode, self.beam())
     }
 
     /// GPUSTAT.31: 0 during vblank; otherwise bit 0 of the VRAM line being displayed, which
     /// changes every scanline in 240-line modes and every field in 480i (docs/hardware/timing.md §7; psx-spx "GPU Status
     /// Register": "0=Even or Vblank, 1=Odd").
     pub fn line_parity_bit(&self) -> bool {
-        if self.timing.in_vblank(&self.display.video_mode()) {
-            return false;
-        }
-        self.displayed_line_parity() == 1
+        self.parity_bit(self.beam())
+    }
+
+    /// GPUSTAT.31 at beam position `beam`.
+    fn parity_bit(&self, beam: Beam) -> bool {
+        !beam.vblank && self.line_parity(beam) == 1
     }
 
     /// Bit 0 of the VRAM line the current field shows (480i) or the current scanline shows
     /// (other modes).
     pub(crate) fn displayed_line_parity(&self) -> u32 {
+        self.line_parity(self.beam())
+    }
+
+    /// Bit 0 of the VRAM line shown at beam position `beam`: the display start line plus the
+    /// field in 480i, plus the lines since GP1(07h) Y1 otherwise.
+    fn line_parity(&self, beam: Beam) -> u32 {
         let start = self.display.start_y as u32;
         if self.display.mode & 0x24 == 0x24 {
-            (start + self.timing.field() as u32) & 1
+            (start + beam.field as u32) & 1
         } else {
-            (start + self.timing.display_line(&self.display.video_mode())) & 1
+            (start + beam.line.saturating_sub(self.display.v_range.0 as u32)) & 1
         }
     }
+}
+
+/// GPUSTAT.13 for display mode `mode` at beam position `beam`.
+fn field_bit(mode: u8, beam: Beam) -> bool {
+    mode & 0x20 == 0 || beam.field == 1
 }

@@ -74,7 +74,7 @@ pub use state::{
     TextureWindow,
 };
 use texture::ClutCache;
-pub use timing::{CPU_CLOCK_HZ, Events, VideoStandard};
+pub use timing::{Beam, CPU_CLOCK_HZ, EventKind, Events, VideoStandard};
 
 /// VRAM width in halfwords.
 pub const VRAM_WIDTH: usize = 1024;
@@ -235,7 +235,8 @@ impl Gpu {
 
     /// CPU cycles until [`Gpu::run`] would report an event: an hblank or vblank edge, the GPU
     /// IRQ or the end of drawing (rounded up, so running exactly this many reaches it); 0 when
-    /// one awaits delivery; `u32::MAX` when none comes. Dot counts are not events.
+    /// one awaits delivery. Every line has an hblank, so one always comes within a line. Dot
+    /// counts are not events ([`Gpu::cycles_until_dots`] gives their deadlines).
     ///
     /// ```
     /// let mut gpu = gpu::Gpu::new();
@@ -266,6 +267,97 @@ impl Gpu {
         } else {
             self.timing.cpu_cycles_for(gpu as u64)
         }
+    }
+
+    /// Where the video beam is now: the scanline of the field, the video clock cycle in it,
+    /// whether that lies in hblank or vblank, and the interlace field
+    /// (docs/hardware/timing.md §2-§7). Timer synchronisation modes (pause or reset during
+    /// hblank or vblank) read `hblank` and `vblank`; the edges come from [`Gpu::run`]'s
+    /// [`Events`] and [`Gpu::cycles_until`]. After a GP1(08h) change that leaves the beam past
+    /// the end of a now shorter field, the beam is at the start of the next field, where the
+    /// next `run` continues.
+    ///
+    /// ```
+    /// // NTSC at reset: 3413 video cycles a line, 11 for every 7 CPU cycles
+    /// // (docs/hardware/timing.md §1, §2); 3000 CPU cycles are 4714 video cycles.
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.run(3000);
+    /// let beam = gpu.beam();
+    /// assert_eq!((beam.line, beam.cycle), (1, 4714 - 3413));
+    /// assert!(!beam.hblank); // the GP1(06h) reset range shows cycles 512..3072
+    /// assert!(beam.vblank); // the GP1(07h) reset range shows lines 16..256
+    /// assert_eq!(beam.field, 0);
+    /// ```
+    pub fn beam(&self) -> Beam {
+        self.timing.beam(&self.display.video_mode())
+    }
+
+    /// CPU cycles until [`Gpu::run`] would report an event of `kind`, rounded up: `run(n - 1)`
+    /// does not report it, `run(n)` does (as long as no GP0/GP1 write changes the timing in
+    /// between). 0 when a [`EventKind::DrawingDone`] awaits delivery; `u32::MAX` when none
+    /// comes: no vblank edges while GP1(07h) Y2 lies past the last line or Y1 >= Y2, no
+    /// drawing end while the GPU is idle. An emulator that only needs IRQ0 stops at
+    /// `cycles_until(EventKind::VblankStart)` once a field instead of at every line's edges.
+    ///
+    /// ```
+    /// use gpu::EventKind;
+    /// let mut gpu = gpu::Gpu::new();
+    /// // The first vblank starts at line 256 (GP1(07h) reset Y2): 256 * 3413 video cycles,
+    /// // at 7 CPU cycles for 11 (docs/hardware/timing.md §1, §6).
+    /// let n = gpu.cycles_until(EventKind::VblankStart);
+    /// assert_eq!(n, (256 * 3413 * 7u32).div_ceil(11));
+    /// assert!(!gpu.run(n - 1).vblank_start);
+    /// assert!(gpu.run(1).vblank_start);
+    /// // The next hblank starts at cycle 3072 of the line (GP1(06h) reset X2).
+    /// let beam = gpu.beam();
+    /// let n = gpu.cycles_until(EventKind::HblankStart);
+    /// assert_eq!(n, ((3072 - beam.cycle) * 7).div_ceil(11));
+    /// // Drawing: a 256x256 fill keeps the GPU busy; it ends within the frame.
+    /// assert_eq!(gpu.cycles_until(EventKind::DrawingDone), u32::MAX); // idle
+    /// gpu.gp0_words(&[0x0200_0000, 0, 256 << 16 | 256]);
+    /// let n = gpu.cycles_until(EventKind::DrawingDone);
+    /// assert!(n > 0 && n < 571_212);
+    /// assert!(!gpu.run(n - 1).drawing_done);
+    /// assert!(gpu.run(1).drawing_done);
+    /// ```
+    pub fn cycles_until(&self, kind: EventKind) -> u32 {
+        match kind {
+            EventKind::DrawingDone => {
+                if self.drawing.done_pending() {
+                    0
+                } else if self.drawing.idle() {
+                    u32::MAX
+                } else {
+                    let gpu = self
+                        .drawing
+                        .ahead()
+                        .saturating_add(self.drawing.cycles_until_idle());
+                    self.timing.cpu_cycles_for(gpu as u64)
+                }
+            }
+            _ => self.timing.cycles_until(&self.display.video_mode(), kind),
+        }
+    }
+
+    /// CPU cycles until [`Gpu::run`] has reported `dots` more dot clock ticks, rounded up: the
+    /// deadline of timer 0 counting the dot clock to a target. The dot divider restarts at
+    /// each line, so a line holds `cycles_per_line / divider` dots, rounded down
+    /// (docs/hardware/timing.md §4); 0 for 0 dots. Valid while no GP1(08h) write changes the
+    /// divider or the line length.
+    ///
+    /// ```
+    /// // 320 wide (GP1(08h) = 1): 8 video cycles a dot, 426 dots a 3413-cycle NTSC line.
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.gp1(0x0800_0001);
+    /// let n = gpu.cycles_until_dots(426);
+    /// // Dot 426 of line 0 ticks at video cycle 426 * 8 = 3408, CPU cycle 3408 * 7 / 11.
+    /// assert_eq!(n, (3408 * 7u32).div_ceil(11));
+    /// assert_eq!(gpu.clone().run(n - 1).dots, 425);
+    /// assert_eq!(gpu.run(n).dots, 426);
+    /// ```
+    pub fn cycles_until_dots(&self, dots: u32) -> u32 {
+        self.timing
+            .cycles_until_dots(&self.display.video_mode(), dots)
     }
 
     /// A block of GP0 words, each received as [`Gpu::gp0`] receives it, with no time passing:

@@ -101,6 +101,55 @@ impl Events {
     }
 }
 
+/// Where the video beam is: the scanline and the video clock cycle in it, whether that lies in
+/// horizontal or vertical blanking, and the interlace field ([`crate::Gpu::beam`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Beam {
+    /// Scanline within the field, 0 at the vertical sync: below 263 (NTSC) or 314 (PAL) lines,
+    /// one fewer in the second interlaced field (docs/hardware/timing.md §3).
+    pub line: u32,
+    /// Video clock cycle within the line, 0 at the horizontal sync: below 3413 (NTSC) or 3406
+    /// (PAL) (docs/hardware/timing.md §2).
+    pub cycle: u32,
+    /// In horizontal blanking: `cycle` lies outside the GP1(06h) range X1..X2
+    /// (docs/hardware/timing.md §5); the signal timer 0 synchronises to and timer 1 counts.
+    pub hblank: bool,
+    /// In vertical blanking: `line` lies outside the GP1(07h) range Y1..Y2 (docs/hardware/
+    /// timing.md §6); the signal timer 1 synchronises to.
+    pub vblank: bool,
+    /// The interlace field, 0 or 1; always 0 while GP1(08h) bit 5 is clear
+    /// (docs/hardware/timing.md §7).
+    pub field: u8,
+}
+
+/// One kind of event [`crate::Gpu::run`] reports, for [`crate::Gpu::cycles_until`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventKind {
+    /// An hblank starts ([`Events::hblank_start`]).
+    HblankStart,
+    /// An hblank ends ([`Events::hblank_end`]).
+    HblankEnd,
+    /// A vblank starts ([`Events::vblank_start`], IRQ0).
+    VblankStart,
+    /// A vblank ends ([`Events::vblank_end`]).
+    VblankEnd,
+    /// The GPU goes from drawing to idle ([`Events::drawing_done`]).
+    DrawingDone,
+}
+
+impl EventKind {
+    /// Its bit in a set of video event kinds.
+    const fn bit(self) -> u8 {
+        1 << self as u8
+    }
+}
+
+/// The four video event kinds.
+const VIDEO_EVENTS: u8 = EventKind::HblankStart.bit()
+    | EventKind::HblankEnd.bit()
+    | EventKind::VblankStart.bit()
+    | EventKind::VblankEnd.bit();
+
 /// Video cycles per scanline: 3413 NTSC, 3406 PAL (docs/hardware/timing.md §2).
 pub const fn cycles_per_line(pal: bool) -> u32 {
     if pal { 3406 } else { 3413 }
@@ -168,25 +217,33 @@ struct Field {
     lines: u32,
     /// Video cycles per dot.
     divider: u32,
-    /// Hblank end and start offsets in a line, when the line has both a visible and a
-    /// blanked part.
-    hblank: Option<(u32, u32)>,
+    /// Hblank end and start offsets in a line: every line has one hblank.
+    hblank: (u32, u32),
     /// Vblank end and start lines, when the field has both a visible and a blanked part.
     vblank: Option<(u32, u32)>,
+    /// GP1(07h) Y1 and Y2 clamped to the field ([`vertical_range`]).
+    v_range: (u32, u32),
 }
 
 impl Field {
     /// Horizontal: visible from X1 to X2 of GP1(06h) (video cycles from the line start),
-    /// both clamped to the line; the rest of the line is hblank. X1 >= X2 gives an endless
-    /// hblank (docs/hardware/timing.md §5). Vertical: visible from line Y1 to
-    /// Y2 of GP1(07h); the rest is vblank. A Y2 at or past the last line is never reached,
-    /// so vblank never starts (docs/hardware/timing.md §6: no vblank IRQ for a too large Y2).
+    /// both clamped to the line; the rest of the line is hblank (docs/hardware/timing.md §5,
+    /// §10: 853 cycles at the standard 608..3168, as the console's timer 0 measures). A range
+    /// that leaves no hblank or no visible part (X1 >= X2, or X1 = 0 with X2 at the line end)
+    /// keeps one hblank a line, that of the GP1(00h) reset range ([`DEGENERATE_HBLANK`];
+    /// docs/gpu.md, "Video timing"). Vertical: visible from line Y1 to Y2 of GP1(07h); the rest
+    /// is vblank. A Y2 at or past the last line is never reached, so vblank never starts
+    /// (docs/hardware/timing.md §6: no vblank IRQ for a too large Y2).
     fn new(vm: &VideoMode, field: u8) -> Self {
         let line = cycles_per_line(vm.pal());
         let lines = lines_per_field(vm.pal(), vm.interlaced(), field);
         let x1 = (vm.h_range.0 as u32).min(line);
         let x2 = (vm.h_range.1 as u32).min(line);
-        let hblank = (x1 < x2 && !(x1 == 0 && x2 == line)).then(|| (nonzero(x1, line), x2));
+        let hblank = if x1 < x2 && !(x1 == 0 && x2 == line) {
+            (nonzero(x1, line), x2)
+        } else {
+            DEGENERATE_HBLANK
+        };
         let (y1, y2) = vertical_range(vm, lines);
         let vblank = (y1 < y2 && y2 < lines).then(|| (nonzero(y1, lines), y2));
         Self {
@@ -195,7 +252,22 @@ impl Field {
             divider: dot_divider(vm.mode),
             hblank,
             vblank,
+            v_range: (y1, y2),
         }
+    }
+
+    /// Whether cycle `c` of a line lies in hblank: from the hblank start to the line end and
+    /// from the line start to the hblank end.
+    fn in_hblank(&self, c: u32) -> bool {
+        let (end, start) = self.hblank;
+        (c < end && end != self.line) || c >= start
+    }
+
+    /// Whether line `l` lies in vblank: outside Y1..Y2, never when Y2 is not reached (no
+    /// vblank starts), always when Y1 >= Y2 (no line is shown).
+    fn in_vblank(&self, l: u32) -> bool {
+        let (y1, y2) = self.v_range;
+        y2 < self.lines && !(y1 <= l && l < y2)
     }
 
     /// Video cycles in the field.
@@ -238,12 +310,11 @@ impl Field {
             dots: (self.dots_to(q) - self.dots_to(p)).min(u32::MAX as u64) as u32,
             ..Events::default()
         };
-        if let Some((end, start)) = self.hblank {
-            let starts = self.count_per_line(start, p, q);
-            e.hblanks = starts.min(u32::MAX as u64) as u32;
-            e.hblank_start = starts != 0;
-            e.hblank_end = self.count_per_line(end, p, q) != 0;
-        }
+        let (end, start) = self.hblank;
+        let starts = self.count_per_line(start, p, q);
+        e.hblanks = starts.min(u32::MAX as u64) as u32;
+        e.hblank_start = starts != 0;
+        e.hblank_end = self.count_per_line(end, p, q) != 0;
         if let Some((end, start)) = self.vblank {
             let at = |l: u32| {
                 let t = l as u64 * self.line as u64;
@@ -255,27 +326,33 @@ impl Field {
         e
     }
 
-    /// The first event position after `p` in this field.
-    fn next_event(&self, p: u64) -> Option<u64> {
+    /// The first position after `p` in this field where an event of the kinds in `kinds` (a
+    /// set of [`EventKind::bit`]) happens.
+    fn next_event(&self, p: u64, kinds: u8) -> Option<u64> {
         let mut best: Option<u64> = None;
-        let mut consider = |t: u64| {
-            if t > p && t <= self.len() {
+        let mut consider = |kind: EventKind, t: u64| {
+            if kinds & kind.bit() != 0 && t > p && t <= self.len() {
                 best = Some(best.map_or(t, |b| b.min(t)));
             }
         };
-        if let Some((end, start)) = self.hblank {
-            for off in [end, start] {
-                let k = self.next_per_line_index(off, p);
-                consider(k * self.line as u64 + off as u64);
-            }
+        let (end, start) = self.hblank;
+        for (kind, off) in [(EventKind::HblankEnd, end), (EventKind::HblankStart, start)] {
+            let k = self.next_per_line_index(off, p);
+            consider(kind, k * self.line as u64 + off as u64);
         }
         if let Some((end, start)) = self.vblank {
-            consider(end as u64 * self.line as u64);
-            consider(start as u64 * self.line as u64);
+            consider(EventKind::VblankEnd, end as u64 * self.line as u64);
+            consider(EventKind::VblankStart, start as u64 * self.line as u64);
         }
         best
     }
 }
+
+/// The hblank of a GP1(06h) range that leaves none (X1 >= X2): that of the GP1(00h) reset
+/// range 200h..C00h (docs/hardware/timing.md §5), ending at cycle 512 of the line and starting
+/// at 3072, 853 video cycles on an NTSC line and 846 on a PAL one. Chosen: no recording shows
+/// what the console does (docs/gpu.md, "Video timing").
+pub(crate) const DEGENERATE_HBLANK: (u32, u32) = (0x200, 0xC00);
 
 /// GP1(07h) Y1, Y2 as the field sees them: Y1 clamped to the field; a Y2 at or past the
 /// last line is never reached (no vblank), marked as Y2 = `lines`.
@@ -339,34 +416,32 @@ impl Timing {
         self.standard
     }
 
-    /// The current field (0 or 1).
-    pub(crate) fn field(&self) -> u8 {
-        self.field
+    /// The timing as the next [`Timing::advance`] starts from it: a position left past the
+    /// end of a field that a mode change made shorter is the start of the next field.
+    fn settled(&self, vm: &VideoMode) -> Timing {
+        let mut t = *self;
+        t.normalise(vm);
+        t
     }
 
-    /// The current scanline within the field, and the video cycle within that line.
-    pub(crate) fn beam(&self, vm: &VideoMode) -> (u32, u32) {
-        let f = Field::new(vm, self.field);
-        let p = self.position.min(f.len().saturating_sub(1));
-        ((p / f.line as u64) as u32, (p % f.line as u64) as u32)
-    }
-
-    /// Whether the current line is outside the GP1(07h) vertical range.
-    pub(crate) fn in_vblank(&self, vm: &VideoMode) -> bool {
-        let (line, _) = self.beam(vm);
-        let f = Field::new(vm, self.field);
-        let (y1, y2) = vertical_range(vm, f.lines);
-        if y2 >= f.lines {
-            return false;
+    /// Where the beam is.
+    pub(crate) fn beam(&self, vm: &VideoMode) -> Beam {
+        let mut f = Field::new(vm, self.field);
+        let (mut position, mut field) = (self.position, self.field);
+        if position >= f.len() {
+            let t = self.settled(vm);
+            (position, field) = (t.position, t.field);
+            f = Field::new(vm, field);
         }
-        !(y1 <= line && line < y2)
-    }
-
-    /// The visible line count since the top of the display range (only meaningful outside
-    /// vblank).
-    pub(crate) fn display_line(&self, vm: &VideoMode) -> u32 {
-        let (line, _) = self.beam(vm);
-        line.saturating_sub(vm.v_range.0 as u32)
+        let line = (position / f.line as u64) as u32;
+        let cycle = (position % f.line as u64) as u32;
+        Beam {
+            line,
+            cycle,
+            hblank: f.in_hblank(cycle),
+            vblank: f.in_vblank(line),
+            field,
+        }
     }
 
     /// Video cycles for `cpu_cycles` CPU cycles, carrying the remainder.
@@ -422,26 +497,55 @@ impl Timing {
         events
     }
 
-    /// CPU cycles until [`Timing::advance`] would report an hblank or vblank edge, or
-    /// `u32::MAX` when none comes (endless hblank and no vblank edge).
-    pub(crate) fn cycles_until_next_event(&self, vm: &VideoMode) -> u32 {
-        let mut t = *self;
-        t.normalise(vm);
-        let f = Field::new(vm, t.field);
-        let video = match f.next_event(t.position) {
-            Some(at) => at - t.position,
-            None => {
-                let mut next = t;
-                next.position = 0;
-                next.next_field(vm);
-                let g = Field::new(vm, next.field);
-                match g.next_event(0) {
-                    Some(at) => f.len() - t.position + at,
-                    None => return u32::MAX,
-                }
+    /// Video cycles until [`Timing::advance`] would report an event of the kinds in `kinds` (a
+    /// set of [`EventKind::bit`]), or `None` when none comes. Fields alternate with a period
+    /// of two, so the rest of this field and the next two hold every kind that ever comes.
+    fn video_until(&self, vm: &VideoMode, kinds: u8) -> Option<u64> {
+        let t = self.settled(vm);
+        let (mut field, mut p, mut passed) = (t.field, t.position, 0u64);
+        for _ in 0..3 {
+            let f = Field::new(vm, field);
+            if let Some(at) = f.next_event(p, kinds) {
+                return Some(passed + at - p);
             }
-        };
-        t.cpu_cycles_for(video)
+            passed += f.len() - p;
+            p = 0;
+            field = if vm.interlaced() { field ^ 1 } else { 0 };
+        }
+        None
+    }
+
+    /// CPU cycles until [`Timing::advance`] would report an hblank or vblank edge (every line
+    /// has an hblank, so one always comes).
+    pub(crate) fn cycles_until_next_event(&self, vm: &VideoMode) -> u32 {
+        self.video_until(vm, VIDEO_EVENTS)
+            .map_or(u32::MAX, |v| self.cpu_cycles_for(v))
+    }
+
+    /// CPU cycles until [`Timing::advance`] would report an event of `kind` (a video kind),
+    /// rounded up; `u32::MAX` when none comes.
+    pub(crate) fn cycles_until(&self, vm: &VideoMode, kind: EventKind) -> u32 {
+        self.video_until(vm, kind.bit() & VIDEO_EVENTS)
+            .map_or(u32::MAX, |v| self.cpu_cycles_for(v))
+    }
+
+    /// CPU cycles until [`Timing::advance`] has reported `dots` dot clock ticks, rounded up.
+    /// Every field is whole lines of one length, so the dots run on across fields as from
+    /// one line to the next: `line / divider` a line, the divider restarting at each line
+    /// (docs/hardware/timing.md §4).
+    pub(crate) fn cycles_until_dots(&self, vm: &VideoMode, dots: u32) -> u32 {
+        if dots == 0 {
+            return 0;
+        }
+        let t = self.settled(vm);
+        let f = Field::new(vm, t.field);
+        let (line, div) = (f.line as u64, f.divider as u64);
+        let per_line = line / div;
+        let want = f.dots_to(t.position) + dots as u64;
+        // The first position whose dot count reaches `want`: dot r (1..=per_line) of line k.
+        let k = (want - 1) / per_line;
+        let r = want - k * per_line;
+        t.cpu_cycles_for(k * line + r * div - t.position)
     }
 }
 

@@ -5,7 +5,7 @@
 //! figures are worked out here from the cost table in docs/emulator.md with floating-point
 //! clock ratios.
 
-use gpu::{DmaError, Gpu, LINKED_LIST_WORD_BUDGET, ListEnd, dma_clear_ordering_table};
+use gpu::{DmaError, EventKind, Gpu, LINKED_LIST_WORD_BUDGET, ListEnd, dma_clear_ordering_table};
 use proptest::prelude::*;
 
 #[path = "support/cost.rs"]
@@ -210,10 +210,10 @@ fn drawing_done_arrives_at_the_predicted_cycle() {
     let time = cost::RECTANGLE_SETUP + 64.0 * cost::ROW + 4096.0 * cost::PIXEL;
     assert_eq!(n, cost::cycles_to_idle(time));
     assert!(!g.run(n - 1).drawing_done);
-    assert_eq!(g.cycles_until_next_event(), 1);
+    assert_eq!(g.cycles_until(EventKind::DrawingDone), 1);
     assert!(g.run(1).drawing_done);
     assert!(!g.run(1000).drawing_done);
-    assert_eq!(g.cycles_until_next_event(), u32::MAX);
+    assert_eq!(g.cycles_until(EventKind::DrawingDone), u32::MAX);
 }
 
 /// A PAL console converts the same costs at its own clock ratio (53,203,425 / 33,868,800,
@@ -414,7 +414,7 @@ proptest! {
         );
         let mut done = 0;
         for _ in 0..4 {
-            let n = g.cycles_until_next_event();
+            let n = g.cycles_until(EventKind::DrawingDone);
             if n == u32::MAX {
                 break;
             }

@@ -108,8 +108,8 @@ fn near_area_edge(env: &Env, (x, y): (i32, i32), snap: Option<(usize, i32)>) -> 
     }
 }
 
-/// A GPU with no video timing events ([`quiet::quiet`]), so that the next event is the end of
-/// drawing, in 480i drawing from field line `start` when `interlace` is given.
+/// A GPU for timing the drawing ([`quiet::quiet`]), in 480i drawing from field line `start`
+/// when `interlace` is given.
 fn gpu_without_video_events(interlace: Option<u32>) -> Gpu {
     let mut g = quiet::quiet();
     if let Some(start) = interlace {

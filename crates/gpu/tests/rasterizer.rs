@@ -785,7 +785,7 @@ proptest! {
                 if side < 2 { e.0 = edge } else { e.1 = edge }
             }
         }
-        // No video timing events: the next event is the end of drawing.
+        // The end of drawing, timed apart from the video events.
         let mut g = quiet::quiet();
         g.gp0_words(&[
             0xE100_0000 | (dither as u32) << 9 | semi.unwrap_or(0) << 5,

@@ -184,16 +184,96 @@ fn vblank_follows_the_vertical_range() {
     assert_eq!(vb, 0);
 }
 
+/// CPU cycles from each hblank start to its end over `lines` lines, stepping from event to
+/// event.
+fn hblank_lengths(g: &mut Gpu, lines: usize) -> Vec<u32> {
+    while !g.run(g.cycles_until_next_event()).hblank_start {}
+    let mut lengths = vec![];
+    while lengths.len() < lines {
+        let mut length = 0;
+        loop {
+            let n = g.cycles_until_next_event();
+            length += n;
+            let e = g.run(n);
+            assert!(!e.hblank_start, "one hblank at a time");
+            if e.hblank_end {
+                break;
+            }
+        }
+        lengths.push(length);
+        while !g.run(g.cycles_until_next_event()).hblank_start {}
+    }
+    lengths
+}
+
 #[test]
-fn zero_width_display_means_endless_hblank() {
-    // psx-spx "GPU Timings": a 0-pixel-wide display gives an endless hblank, so timer 1
-    // counts no lines.
-    let mut g = gpu(VideoStandard::Ntsc, 0);
-    g.gp1(0x0600_0000 | 0x500 << 12 | 0x500);
-    let e = g.run(1_000_000);
-    assert_eq!(e.hblanks, 0);
-    assert!(!e.hblank_start && !e.hblank_end);
-    assert!(e.vblank_start);
+fn hblank_is_the_line_outside_the_display_range_as_the_timers_log_shows() {
+    // ps1-tests timers/psx.log, "Testing Timer0 sync modes (clock source = System clock, 100
+    // delay cycles, ...)", sync mode 0 (pause during hblank): samples 122 CPU cycles apart
+    // (the sync mode 1 rows step by 122). 512 wide: 638, 724 x5, 827 over 6 intervals; 640
+    // wide: 391, 448 x4, 457 over 5. The counter stops for one whole hblank in each window:
+    // elapsed minus counted.
+    let paused_512 = 6 * 122 - (827 - 638);
+    let paused_640 = 5 * 122 - (457 - 391);
+    assert_eq!((paused_512, paused_640), (543, 544));
+    // A 2560-cycle range (psx-spx "GP1(06h)": official software uses one at every width but
+    // 368; PSn00bSDK writes 608..3168; the log does not record the range): hblank = 3413 -
+    // 2560 = 853 video cycles = 542.8 CPU cycles at 7/11 (docs/hardware/timing.md §5, §10).
+    for (mode, recorded) in [(2u32, paused_512), (3, paused_640)] {
+        let mut g = gpu(VideoStandard::Ntsc, mode);
+        g.gp1(0x0600_0000 | 3168 << 12 | 608);
+        let lengths = hblank_lengths(&mut g, 200);
+        let mean = lengths.iter().sum::<u32>() as f64 / lengths.len() as f64;
+        assert!(
+            lengths.iter().all(|l| (542..=543).contains(l)),
+            "{lengths:?}"
+        );
+        assert!((mean - 853.0 * 7.0 / 11.0).abs() < 0.02, "{mean}");
+        assert!((mean - recorded as f64).abs() < 1.5, "{mean} vs {recorded}");
+    }
+}
+
+#[test]
+fn degenerate_ranges_keep_one_hblank_per_line() {
+    // A GP1(06h) range with X1 >= X2 (zero display width), or X1 = 0 with X2 past the line
+    // end, leaves no hblank by the range rule; the model keeps the GP1(00h) reset range's
+    // (512..3072: hblank from 3072 to 512 of the next line, 853 video cycles NTSC, 846 PAL;
+    // docs/gpu.md "Video timing"), so timer 1 still counts lines.
+    for (standard, pal, line, lines) in [
+        (VideoStandard::Ntsc, 0, 3413u64, 263u32),
+        (VideoStandard::Pal, PAL, 3406, 314),
+    ] {
+        for (x1, x2) in [
+            (0x500u32, 0x500u32),
+            (0xC00, 0x200),
+            (0, 0),
+            (0xFFF, 0),
+            (0, 0xFFF),
+        ] {
+            let mut g = gpu(standard, pal);
+            g.gp1(0x0600_0000 | x2 << 12 | x1);
+            if x1 >= x2 {
+                assert_eq!(g.display_area().width, 0);
+            }
+            let frame = g.run(2_000_000);
+            assert!(frame.hblank_start && frame.hblank_end, "{x1:#x}..{x2:#x}");
+            while !g.run(g.cycles_until_next_event()).vblank_start {}
+            let mut total = 0;
+            let mut vblanks = 0;
+            while vblanks < 3 {
+                let e = g.run(g.cycles_until_next_event());
+                total += e.hblanks;
+                vblanks += e.vblank_start as u32;
+            }
+            assert_eq!(total, 3 * lines, "one hblank a line");
+            let video = 853 - 7 * (standard == VideoStandard::Pal) as u64;
+            let clock = standard.video_clock_hz() as f64 / CPU_CLOCK_HZ as f64;
+            let lengths = hblank_lengths(&mut g, 50);
+            let mean = lengths.iter().sum::<u32>() as f64 / lengths.len() as f64;
+            assert!((mean - (line - 2560) as f64 / clock).abs() < 0.05, "{mean}");
+            assert!((mean - video as f64 / clock).abs() < 0.05);
+        }
+    }
 }
 
 #[test]
