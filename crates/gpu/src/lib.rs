@@ -60,7 +60,7 @@ pub use dma::{
     DmaError, LINKED_LIST_WORD_BUDGET, LinkedListReport, ListEnd, RAM_MASK, RAM_SIZE,
     dma_clear_ordering_table,
 };
-pub use frame::{ChannelExpand, FrameError, FrameSize, PixelFormat};
+pub use frame::{ChannelExpand, DisplayLine, FrameError, FrameSize, PixelFormat};
 pub use gp0::PendingInput;
 pub use ordering_table::{
     END_MARKER, MAX_DEPTH, MAX_PACKET_WORDS, MAX_WORDS, OrderingTable, OtError, WalkStats, walk_ram,

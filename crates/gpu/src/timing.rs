@@ -89,7 +89,7 @@ impl Events {
             || self.drawing_done
     }
 
-    fn merge(&mut self, o: Events) {
+    pub(crate) fn merge(&mut self, o: Events) {
         self.dots = self.dots.saturating_add(o.dots);
         self.hblanks = self.hblanks.saturating_add(o.hblanks);
         self.hblank_start |= o.hblank_start;
@@ -348,6 +348,22 @@ impl Field {
     }
 }
 
+impl Field {
+    /// The first displayed line whose end lies after `p`, and that end: lines Y1..Y2 of
+    /// GP1(07h), clamped to the field, are displayed; a line ends where the next begins.
+    fn next_shown_line_end(&self, p: u64) -> Option<(u64, u32)> {
+        let (y1, y2) = self.v_range;
+        let k = y1.max((p / self.line as u64) as u32);
+        (k < y2).then(|| ((k as u64 + 1) * self.line as u64, k))
+    }
+
+    /// Whether line `l` is displayed (between Y1 and Y2 of GP1(07h), clamped to the field).
+    fn shows(&self, l: u32) -> bool {
+        let (y1, y2) = self.v_range;
+        y1 <= l && l < y2
+    }
+}
+
 /// The hblank of a GP1(06h) range that leaves none (X1 >= X2): that of the GP1(00h) reset
 /// range 200h..C00h (docs/hardware/timing.md §5), ending at cycle 512 of the line and starting
 /// at 3072, 853 video cycles on an NTSC line and 846 on a PAL one. Chosen: no recording shows
@@ -513,6 +529,29 @@ impl Timing {
             field = if vm.interlaced() { field ^ 1 } else { 0 };
         }
         None
+    }
+
+    /// The next end of a displayed line: video cycles until the beam reaches it, the field
+    /// and the scanline; `None` when no line is displayed (Y1 >= Y2).
+    pub(crate) fn next_shown_line_end(&self, vm: &VideoMode) -> Option<(u64, u8, u32)> {
+        let t = self.settled(vm);
+        let (mut field, mut p, mut passed) = (t.field, t.position, 0u64);
+        for _ in 0..3 {
+            let f = Field::new(vm, field);
+            if let Some((at, line)) = f.next_shown_line_end(p) {
+                return Some((passed + at - p, field, line));
+            }
+            passed += f.len() - p;
+            p = 0;
+            field = if vm.interlaced() { field ^ 1 } else { 0 };
+        }
+        None
+    }
+
+    /// Whether the beam is on a displayed line (Y1..Y2 of GP1(07h), clamped to the field).
+    pub(crate) fn on_shown_line(&self, vm: &VideoMode) -> bool {
+        let beam = self.beam(vm);
+        Field::new(vm, beam.field).shows(beam.line)
     }
 
     /// CPU cycles until [`Timing::advance`] would report an hblank or vblank edge (every line
