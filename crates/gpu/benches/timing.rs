@@ -1,10 +1,12 @@
 //! Cost of advancing one NTSC frame of video timing with its events, in the chunks an
-//! emulator would use: one `run` per frame, one per scanline, and one per event found with
-//! `cycles_until_next_event` (every hblank edge and the vblank edges). The GPU is idle, the
-//! display in its reset mode (256x240, hblank and vblank ranges set).
+//! emulator would use: one `run` per frame, one per scanline, one per event found with
+//! `cycles_until_next_event` (every hblank edge and the vblank edges), and one per field
+//! found with `cycles_until(EventKind::VblankStart)`; and of scanning a frame out line by
+//! line with `run_lines`, each line decoded to RGBA. The GPU is idle, the display in its reset
+//! mode (256x240, hblank and vblank ranges set; turned on for the scan-out).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use gpu::{Events, Gpu};
+use gpu::{EventKind, Events, Gpu, PixelFormat};
 use std::hint::black_box;
 
 /// CPU cycles of one progressive NTSC frame: 263 lines of 3413 video cycles at 7/11 CPU
@@ -53,6 +55,32 @@ fn frame(c: &mut Criterion) {
             }
             black_box((total, runs))
         })
+    });
+    let mut g = Gpu::new();
+    group.bench_function("one_run_per_vblank", |b| {
+        b.iter(|| {
+            let wait = g.cycles_until(EventKind::VblankStart);
+            black_box(g.run(wait))
+        })
+    });
+    let mut g = Gpu::new();
+    g.gp1(0x0300_0000);
+    let mut rgba = vec![0u8; 256 * 240 * 4];
+    group.bench_function("run_lines_rgba", |b| {
+        b.iter(|| {
+            let wait = g.cycles_until(EventKind::VblankStart);
+            black_box(g.run_lines(wait, |line| {
+                let at = line.row as usize * 256 * 4;
+                if let Some(row) = rgba.get_mut(at..at + 256 * 4) {
+                    black_box(line.decode(row, PixelFormat::Rgba8888).ok());
+                }
+            }))
+        })
+    });
+    let mut g = Gpu::new();
+    g.gp1(0x0300_0000);
+    group.bench_function("display_frame_rgba", |b| {
+        b.iter(|| black_box(g.display_frame(&mut rgba, PixelFormat::Rgba8888).ok()))
     });
     group.finish();
     // Calls per frame, for reading the per-event figure.

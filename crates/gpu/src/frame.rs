@@ -144,6 +144,19 @@ impl DisplayArea {
     /// a pixel (the alpha byte of RGBA is 255).
     fn decode_row(&self, vram: &[u16], y: usize, line: &mut [u8], bpp: usize, e: ChannelExpand) {
         let x0 = self.x as usize;
+        // 15-bit pixels of a line that does not wrap at the VRAM's right edge: one slice.
+        let start = (y & 511) * VRAM_WIDTH + x0;
+        let width = line.len() / bpp;
+        let src = vram
+            .get(start..start + width)
+            .filter(|_| x0 + width <= VRAM_WIDTH);
+        if let (false, Some(src)) = (self.color_24bit, src) {
+            match bpp {
+                3 => put::<3>(line, src, e),
+                _ => put::<4>(line, src, e),
+            }
+            return;
+        }
         for (col, px) in line.chunks_exact_mut(bpp).enumerate() {
             let rgb = if self.color_24bit {
                 let byte = |k: usize| {
@@ -163,6 +176,18 @@ impl DisplayArea {
                 *a = 255;
             }
         }
+    }
+}
+
+/// 15-bit pixels `src` into `line` as `N`-byte RGB (3) or RGBA (4, alpha 255) pixels.
+fn put<const N: usize>(line: &mut [u8], src: &[u16], e: ChannelExpand) {
+    for (px, &p) in line.chunks_exact_mut(N).zip(src) {
+        let [r, g, b] = e.pixel(p);
+        let mut out = [255u8; N];
+        out[0] = r;
+        out[1] = g;
+        out[2] = b;
+        px.copy_from_slice(&out);
     }
 }
 

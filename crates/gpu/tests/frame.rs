@@ -172,3 +172,53 @@ fn short_buffer_is_an_error() {
     g.gp1(0x0300_0001);
     assert!(g.display_frame(&mut [], PixelFormat::Rgba8888).is_err());
 }
+
+proptest::proptest! {
+    /// Any area of any VRAM, 15- or 24-bit, either widening, RGB or RGBA, decodes to what the
+    /// halfwords say pixel by pixel (coordinates wrapped at the VRAM edges; psx-spx
+    /// "Framebuffer").
+    #[test]
+    fn any_area_decodes_pixel_by_pixel(
+        seed in proptest::prelude::any::<u64>(),
+        x in 0u16..1024, y in 0u16..512, width in 0u16..700, height in 0u16..8,
+        color_24bit in proptest::prelude::any::<bool>(),
+        shift in proptest::prelude::any::<bool>(),
+        rgba in proptest::prelude::any::<bool>(),
+    ) {
+        let mut vram = vec![0u16; 1024 * 512];
+        let mut s = seed | 1;
+        for p in vram.iter_mut() {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            *p = s as u16;
+        }
+        let area = gpu::DisplayArea { x, y, width, height, color_24bit };
+        let (format, bpp) = if rgba { (PixelFormat::Rgba8888, 4) } else { (PixelFormat::Rgb888, 3) };
+        let expand = if shift { gpu::ChannelExpand::Shift } else { gpu::ChannelExpand::Replicate };
+        let mut out = vec![0u8; width as usize * height as usize * bpp];
+        area.decode(&vram, &mut out, format, expand).unwrap();
+        let at = |x: usize, y: usize| vram[(y % 512) * 1024 + x % 1024];
+        let widen = |c: u16| {
+            let c = (c & 31) as u8;
+            if shift { c << 3 } else { c << 3 | c >> 2 }
+        };
+        for row in 0..height as usize {
+            for col in 0..width as usize {
+                let (vx, vy) = (x as usize, y as usize + row);
+                let rgb = if color_24bit {
+                    let byte = |k: usize| (at(vx + k / 2, vy) >> (8 * (k % 2))) as u8;
+                    [byte(3 * col), byte(3 * col + 1), byte(3 * col + 2)]
+                } else {
+                    let p = at(vx + col, vy);
+                    [widen(p), widen(p >> 5), widen(p >> 10)]
+                };
+                let i = (row * width as usize + col) * bpp;
+                proptest::prop_assert_eq!(&out[i..i + 3], &rgb[..]);
+                if rgba {
+                    proptest::prop_assert_eq!(out[i + 3], 255);
+                }
+            }
+        }
+    }
+}
