@@ -3,7 +3,10 @@
 //! choices made where it is silent are listed in `docs/gpu.md`.
 //!
 //! Route the console's GP0/GP1 port writes (or DMA blocks) into [`Gpu`]; read pixels from
-//! [`Gpu::vram`]. Commands may arrive split at any word boundary.
+//! [`Gpu::vram`]. Commands may arrive split at any word boundary. Time passes through
+//! [`Gpu::run`] (or [`Gpu::run_lines`], which also hands over each displayed line as the beam
+//! finishes it); [`Gpu::beam`] and [`Gpu::cycles_until`] tell where the beam is and when each
+//! kind of event comes, for the timers and the interrupt controller.
 //!
 //! An emulator's side of the chip, in a few lines (docs/emulator.md has the full wiring):
 //!
