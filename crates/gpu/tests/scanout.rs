@@ -289,9 +289,31 @@ proptest! {
             prop_assert_eq!(ea, eb);
         }
         prop_assert!(a == b);
+        // Lines of field `f` (docs/gpu.md "Video timing"): 263 NTSC / 314 PAL; interlaced,
+        // field 0 is one line longer than field 1 (263/262, 313/312).
+        let (pal, interlaced) = (mode & 0x08 != 0, mode & 0x20 != 0);
+        let lines = |f: u8| match (pal, interlaced) {
+            (false, false) => 263,
+            (true, false) => 314,
+            (false, true) => 263 - u32::from(f),
+            (true, true) => 313 - u32::from(f),
+        };
+        // The GPU starts at line 0 of field 0: the first line given is Y1 of field 0.
+        if let Some(&first) = seen.first() {
+            prop_assert_eq!(first, (0, y1));
+        }
         for w in seen.windows(2) {
             let ((f0, l0), (f1, l1)) = (w[0], w[1]);
-            prop_assert!(l1 == l0 + 1 || (l1 <= l0 && (f1 != f0 || mode & 0x20 == 0)));
+            if f1 == f0 && l1 == l0 + 1 {
+                continue;
+            }
+            // A new field: the last one ended on its last displayed line and this one starts
+            // on Y1. Interlaced, the fields alternate, unless the other field shows no line
+            // (Y1 at or past its end: line 312 of PAL, 262 of NTSC, is only in field 0).
+            prop_assert_eq!(l0 + 1, y2.min(lines(f0)), "field {} ended early", f0);
+            prop_assert_eq!(l1, y1);
+            let next = if !interlaced || y1 >= lines(f0 ^ 1) { f0 } else { f0 ^ 1 };
+            prop_assert_eq!(f1, next);
         }
         for &(_, l) in &seen {
             prop_assert!(y1 <= l && l < y2, "line {} outside {}..{}", l, y1, y2);
