@@ -766,6 +766,12 @@ impl Registers {
     /// the engine stores it (bits above a 16-bit register's extension, a non-zero r15, r28 or
     /// r29, FLAG bits it cannot hold).
     pub(crate) fn from_words(words: &[u32; 64]) -> Option<Registers> {
+        // FLAG is checked before the register file reads it: the file holds only values a
+        // CTC2 or a command can leave there.
+        let flag = words[32 + FLAG];
+        if Flag::from_bits(flag).bits() != flag {
+            return None;
+        }
         let mut f = RegisterFile::default();
         for (i, &w) in words.iter().enumerate() {
             if i < 32 {

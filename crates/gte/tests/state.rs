@@ -397,3 +397,21 @@ fn version_1_states_load() {
         assert_eq!((back.version, &back.registers), (1, &state.registers));
     }
 }
+
+#[cfg(feature = "serde")]
+proptest! {
+    /// Any 256-byte register block in a version-2 binary state loads or is refused with an
+    /// error, never a panic (run with debug assertions: `cargo test -p gte --all-features`);
+    /// a block that loads is one the engine would write back unchanged.
+    #[test]
+    fn any_binary_block_loads_or_is_refused(words in prop::collection::vec(any::<u32>(), 64)) {
+        let mut bytes = vec![GteState::VERSION as u8, 0x80, 0x02];
+        for w in &words {
+            bytes.extend_from_slice(&w.to_le_bytes());
+        }
+        bytes.push(0); // divide mode
+        if let Ok(state) = postcard::from_bytes::<GteState>(&bytes) {
+            prop_assert_eq!(postcard::to_allocvec(&state).unwrap(), bytes);
+        }
+    }
+}
