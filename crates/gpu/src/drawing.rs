@@ -196,9 +196,44 @@ pub(crate) struct Drawing {
     done_pending: bool,
     /// What the conversion of draw units to GPU cycles has carried over: a fraction of a
     /// GPU cycle, in units of 1 / (256 x the clock ratio's denominator).
+    #[cfg_attr(feature = "serde", serde(default))]
     carry: u64,
     /// GPU cycles of every unit received so far.
+    #[cfg_attr(feature = "serde", serde(default))]
     total: u64,
+}
+
+/// [`Drawing`] as save-state version 1 wrote it: without the carried fraction and the work
+/// counter, which load as 0 (the state was saved before either was kept).
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+pub(crate) struct DrawingV1 {
+    busy: u32,
+    queue: [Queued; QUEUE_LEN],
+    head: usize,
+    len: usize,
+    fifo_words: u32,
+    partial_words: u32,
+    ahead: u32,
+    done_pending: bool,
+}
+
+#[cfg(feature = "serde")]
+impl From<DrawingV1> for Drawing {
+    fn from(d: DrawingV1) -> Self {
+        Drawing {
+            busy: d.busy,
+            queue: d.queue,
+            head: d.head,
+            len: d.len,
+            fifo_words: d.fifo_words,
+            partial_words: d.partial_words,
+            ahead: d.ahead,
+            done_pending: d.done_pending,
+            carry: 0,
+            total: 0,
+        }
+    }
 }
 
 impl Drawing {

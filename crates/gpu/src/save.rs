@@ -286,12 +286,16 @@ impl<'de> Deserialize<'de> for VramV1 {
     }
 }
 
-/// A version-1 body: the fields of [`GpuFields`] with VRAM as a sequence of halfwords.
+/// A version-1 body: the fields of [`GpuFields`] with VRAM as a sequence of halfwords, the
+/// VRAM-to-CPU transfer without its fetch timing and the drawing time without its carried
+/// fraction and work counter (both added in version 2, loaded as 0).
 struct GpuV1(Gpu);
 
 impl<'de> Deserialize<'de> for GpuV1 {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let f = GpuFields::<VramV1>::deserialize(deserializer)?;
+        let f = GpuFields::<VramV1, transfer::ReadTransferV1, drawing::DrawingV1>::deserialize(
+            deserializer,
+        )?;
         Ok(GpuV1(f.into_gpu(|v| v.0)?))
     }
 }
@@ -371,37 +375,39 @@ impl<'de> Deserialize<'de> for GpuAnyLayout {
 }
 
 /// The serialized fields of [`Gpu`], in its declaration order, before their invariants are
-/// checked; `V` is VRAM in the layout of the version read.
+/// checked; `V` is VRAM, `R` the VRAM-to-CPU transfer and `D` the drawing time in the layout
+/// of the version read.
 #[derive(Deserialize)]
-pub(crate) struct GpuFields<V = Vram> {
+pub(crate) struct GpuFields<V = Vram, R = transfer::ReadTransfer, D = drawing::Drawing> {
     draw: DrawState,
     clut: ClutCache,
     gp0: gp0::Gp0State,
-    read: transfer::ReadTransfer,
+    read: R,
     display: DisplayState,
     gpuread_latch: u32,
     irq: bool,
     irq_event: bool,
     texture_disable_allowed: bool,
-    drawing: drawing::Drawing,
+    drawing: D,
     timing: timing::Timing,
     vram: V,
 }
 
-impl<V> GpuFields<V> {
-    /// The checked GPU of these fields, their VRAM converted by `vram`.
+impl<V, R: Into<transfer::ReadTransfer>, D: Into<drawing::Drawing>> GpuFields<V, R, D> {
+    /// The checked GPU of these fields, their VRAM converted by `vram`, the transfer and
+    /// drawing time by their version's conversion.
     fn into_gpu<E: de::Error>(self, vram: impl FnOnce(V) -> Vram) -> Result<Gpu, E> {
         Gpu::try_from(GpuFields {
             draw: self.draw,
             clut: self.clut,
             gp0: self.gp0,
-            read: self.read,
+            read: self.read.into(),
             display: self.display,
             gpuread_latch: self.gpuread_latch,
             irq: self.irq,
             irq_event: self.irq_event,
             texture_disable_allowed: self.texture_disable_allowed,
-            drawing: self.drawing,
+            drawing: self.drawing.into(),
             timing: self.timing,
             vram: vram(self.vram),
         })

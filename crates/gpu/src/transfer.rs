@@ -196,8 +196,33 @@ pub struct ReadTransfer {
     rect: TransferRect,
     next: u32,
     active: bool,
+    #[cfg_attr(feature = "serde", serde(default))]
     fetch: u32,
+    #[cfg_attr(feature = "serde", serde(default))]
     tail: u32,
+}
+
+/// [`ReadTransfer`] as save-state version 1 wrote it: without the fetch timing, which loads
+/// as 0 (every word ready, as version 1's GPUREAD was).
+#[cfg(feature = "serde")]
+#[derive(serde::Deserialize)]
+pub(crate) struct ReadTransferV1 {
+    rect: TransferRect,
+    next: u32,
+    active: bool,
+}
+
+#[cfg(feature = "serde")]
+impl From<ReadTransferV1> for ReadTransfer {
+    fn from(r: ReadTransferV1) -> Self {
+        ReadTransfer {
+            rect: r.rect,
+            next: r.next,
+            active: r.active,
+            fetch: 0,
+            tail: 0,
+        }
+    }
 }
 
 impl ReadTransfer {

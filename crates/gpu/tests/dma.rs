@@ -196,7 +196,10 @@ fn flat_triangle_time_follows_drawn_pixels() {
     assert!(drawn > 1000);
     // Rows 0 to 47: from the top vertex down to the bottom one.
     let time = cost::TRIANGLE_SETUP + 48.0 * cost::ROW + drawn as f64 * cost::PIXEL;
-    assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
+    assert_eq!(
+        g.cycles_until(EventKind::DrawingDone),
+        cost::cycles_to_idle(time)
+    );
 }
 
 /// Busy-to-idle is reported exactly when the predicted cycles have run, once.
@@ -205,7 +208,7 @@ fn drawing_done_arrives_at_the_predicted_cycle() {
     let mut g = quiet();
     g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
     g.gp0_words(&[0x6000_00FF, 0, 0x0040_0040]);
-    let n = g.cycles_until_next_event();
+    let n = g.cycles_until(EventKind::DrawingDone);
     // A 64x64 rectangle: set-up, 64 rows, 4096 pixels.
     let time = cost::RECTANGLE_SETUP + 64.0 * cost::ROW + 4096.0 * cost::PIXEL;
     assert_eq!(n, cost::cycles_to_idle(time));
@@ -230,7 +233,7 @@ fn pal_console_draw_time_uses_the_pal_clock() {
     let (num, den) = (53_203_425.0, 33_868_800.0);
     let gpu = (time * num / den + 1e-9).floor();
     let expected = (gpu * den / num - 1e-9).ceil() as u32;
-    assert_eq!(pal.cycles_until_next_event(), expected);
+    assert_eq!(pal.cycles_until(EventKind::DrawingDone), expected);
     assert!(expected.abs_diff(cost::cycles_to_idle(time)) <= 1);
 }
 
@@ -291,7 +294,7 @@ fn dma_wait_is_not_counted_twice() {
     let mut g = quiet();
     let cycles = g.dma_block_write(&words);
     let done = cost::cpu_cycles(gpu_at_word(3) + cost::gpu_cycles(7.0 * cost::fill(16, 1)));
-    assert_eq!(g.cycles_until_next_event(), done);
+    assert_eq!(g.cycles_until(EventKind::DrawingDone), done);
     let mut done_at = None;
     for t in 1..=done + 1 {
         if g.run(1).drawing_done {
@@ -321,7 +324,7 @@ fn block_dma_overlaps_the_drawing() {
     // Everything ends after the rectangle and the six fills.
     let fills = cost::gpu_cycles(6.0 * cost::fill(16, 1));
     assert_eq!(
-        g.cycles_until_next_event(),
+        g.cycles_until(EventKind::DrawingDone),
         cost::cpu_cycles(gpu_at_word(3) + rect + fills)
     );
 }
@@ -351,7 +354,7 @@ fn cpu_store_into_a_full_fifo_stalls() {
     // end where they would have without it.
     g.run(stall);
     let left = cost::cpu_cycles(cost::gpu_cycles(6.0 * cost::fill(16, 1))) - stall;
-    assert!(g.cycles_until_next_event().abs_diff(left) <= 1);
+    assert!(g.cycles_until(EventKind::DrawingDone).abs_diff(left) <= 1);
 }
 
 /// GPUREAD by DMA: the GPU fetches the rectangle from VRAM at its own rate, and the DMA,
@@ -409,7 +412,7 @@ proptest! {
         let mut g = quiet();
         g.dma_block_write(&words);
         prop_assert_eq!(
-            g.cycles_until_next_event(),
+            g.cycles_until(EventKind::DrawingDone),
             cost::cpu_cycles(gpu_at_word(3) + cost::gpu_cycles(total))
         );
         let mut done = 0;

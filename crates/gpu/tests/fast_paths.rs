@@ -319,7 +319,7 @@ proptest! {
         let vram = g.vram();
         prop_assert!(*vram == expected, "{}", difference(vram, &expected, &Vram::new()));
         let time = cost::TRIANGLE_SETUP + rows * cost::ROW + drawn as f64 * cost::PIXEL;
-        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
+        prop_assert_eq!(g.cycles_until(gpu::EventKind::DrawingDone), cost::cycles_to_idle(time));
     }
 
     /// Gouraud-shaded opaque triangles without the E6h mask check (GP0 30h, and 31h whose
@@ -374,7 +374,7 @@ proptest! {
             + cost::GOURAUD_SETUP
             + rows * cost::ROW
             + drawn as f64 * (cost::PIXEL + cost::SHADED_PIXEL);
-        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
+        prop_assert_eq!(g.cycles_until(gpu::EventKind::DrawingDone), cost::cycles_to_idle(time));
     }
 
     /// Flat quads whose vertices are the corners of an axis-aligned rectangle, in every

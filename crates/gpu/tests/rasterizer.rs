@@ -822,7 +822,7 @@ proptest! {
         prop_assert!(*g.vram() == expected, "VRAM differs from the model");
         let steps = (ends[1].0 - ends[0].0).abs().max((ends[1].1 - ends[0].1).abs());
         let time = cost::LINE_SETUP + steps as f64 * cost::LINE_STEP;
-        prop_assert_eq!(g.cycles_until_next_event(), cost::cycles_to_idle(time));
+        prop_assert_eq!(g.cycles_until(gpu::EventKind::DrawingDone), cost::cycles_to_idle(time));
     }
 }
 
