@@ -20,8 +20,6 @@
 //! ```
 #![deny(missing_docs)]
 
-use alloc::format;
-use alloc::string::String;
 use alloc::vec::Vec;
 
 use crate::command::{self, Command, LineOp, MAX_PACKET, PolygonOp, RectangleOp, Tail};
@@ -168,13 +166,186 @@ impl Primitive {
     }
 }
 
-/// A named field of a decoded command, as text.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Field {
-    /// Field name, e.g. `vertex 0`, `texpage`, `clut`.
-    pub name: &'static str,
-    /// Value as text, e.g. `(10, 20)`, `#ff8000`.
-    pub value: String,
+/// A field of a decoded command: what it is and its value. Positions of primitives are
+/// after the drawing offset; everything else is as the command's words and the drawing
+/// state give it (docs/hardware/gpu.md §2, §8, §9).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Field {
+    /// The colour of a polygon's or line's vertex (vertex 0's is the command word's).
+    VertexColor {
+        /// Vertex index in packet order.
+        vertex: u8,
+        /// 8-bit R, G, B.
+        rgb: [u8; 3],
+    },
+    /// A polygon's or line's vertex.
+    Vertex {
+        /// Vertex index in packet order.
+        vertex: u8,
+        /// X after the drawing offset.
+        x: i32,
+        /// Y after the drawing offset.
+        y: i32,
+        /// Texture coordinate (U, V), when the command is textured.
+        uv: Option<(u8, u8)>,
+    },
+    /// The colour of a fill or a rectangle.
+    Color([u8; 3]),
+    /// The top-left corner of a fill (in VRAM) or a rectangle (after the drawing offset).
+    Position {
+        /// Left edge.
+        x: i32,
+        /// Top line.
+        y: i32,
+        /// A textured rectangle's first texel (U, V).
+        uv: Option<(u8, u8)>,
+    },
+    /// The width and height of a fill, a rectangle or a transfer.
+    Size {
+        /// Width in pixels.
+        width: u32,
+        /// Height in lines.
+        height: u32,
+    },
+    /// The texture a primitive samples: page, depth, CLUT, raw (unmodulated).
+    Texture(Texture),
+    /// Textured by its command, but GP0(E1h) bit 11 disabled texturing.
+    TextureDisabled,
+    /// The semi-transparency mode of a semi-transparent primitive.
+    Blend(BlendMode),
+    /// What applies to a primitive's pixels.
+    Flags(Flags),
+    /// The segments of a polyline.
+    Segments(usize),
+    /// The source corner of a VRAM copy or a VRAM-to-CPU transfer.
+    Source {
+        /// Left edge.
+        x: u16,
+        /// Top line.
+        y: u16,
+    },
+    /// The destination corner of a VRAM copy or a CPU-to-VRAM transfer.
+    Destination {
+        /// Left edge.
+        x: u16,
+        /// Top line.
+        y: u16,
+    },
+    /// The data words of a CPU-to-VRAM transfer.
+    DataWords(usize),
+    /// GP0(E1h) bits 0-4 and 7-8: the texture page and depth.
+    Texpage {
+        /// Page left edge in halfwords.
+        x: u16,
+        /// Page top line.
+        y: u16,
+        /// Texture depth.
+        depth: TextureDepth,
+    },
+    /// GP0(E1h) bit 9: dithering.
+    Dither(bool),
+    /// GP0(E1h) bit 10: drawing to the displayed area allowed.
+    DrawToDisplay(bool),
+    /// GP0(E1h) bit 11: texture disable (as GP1(09h) lets it apply).
+    TextureDisable(bool),
+    /// GP0(E1h) bit 12: rectangle X flip.
+    FlipX(bool),
+    /// GP0(E1h) bit 13: rectangle Y flip.
+    FlipY(bool),
+    /// GP0(E2h) mask, in units of 8 texels.
+    WindowMask {
+        /// Mask X.
+        x: u8,
+        /// Mask Y.
+        y: u8,
+    },
+    /// GP0(E2h) offset, in units of 8 texels.
+    WindowOffset {
+        /// Offset X.
+        x: u8,
+        /// Offset Y.
+        y: u8,
+    },
+    /// GP0(E3h): the drawing area's top-left corner.
+    AreaTopLeft {
+        /// Left edge.
+        x: u16,
+        /// Top line.
+        y: u16,
+    },
+    /// GP0(E4h): the drawing area's bottom-right corner (inclusive).
+    AreaBottomRight {
+        /// Right edge.
+        x: u16,
+        /// Bottom line.
+        y: u16,
+    },
+    /// GP0(E5h): the drawing offset.
+    DrawingOffset {
+        /// X offset.
+        x: i16,
+        /// Y offset.
+        y: i16,
+    },
+    /// GP0(E6h) bit 0: bit 15 set on every pixel drawn.
+    SetMask(bool),
+    /// GP0(E6h) bit 1: pixels whose bit 15 is set are not drawn over.
+    CheckMask(bool),
+    /// The words of a continuation.
+    Words(usize),
+    /// GP1(03h): the display on (bit 0 clear) or off.
+    DisplayEnabled(bool),
+    /// GP1(04h): the DMA direction, 0-3.
+    DmaDirection(u8),
+    /// GP1(05h): the VRAM position of the display's top-left corner.
+    DisplayStart {
+        /// Left edge.
+        x: u16,
+        /// Top line.
+        y: u16,
+    },
+    /// GP1(06h): the horizontal display range, in video clock cycles.
+    HorizontalRange {
+        /// Start.
+        x1: u16,
+        /// End.
+        x2: u16,
+    },
+    /// GP1(07h): the vertical display range, in scanlines.
+    VerticalRange {
+        /// Start.
+        y1: u16,
+        /// End.
+        y2: u16,
+    },
+    /// GP1(08h): the display mode bits 0-7.
+    DisplayMode(u8),
+    /// GP1(09h): texture disable allowed (bit 0).
+    TextureDisableAllowed(bool),
+    /// GP1(10h)-(1Fh): the register asked for (bits 0-2).
+    InfoRegister(u8),
+}
+
+/// What applies to a primitive's pixels, from its command and the drawing state
+/// (docs/hardware/gpu.md §2, §6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Flags {
+    /// Colours interpolated.
+    pub gouraud: bool,
+    /// Texture sampled.
+    pub textured: bool,
+    /// Semi-transparent.
+    pub semi_transparent: bool,
+    /// Dithered.
+    pub dithered: bool,
+    /// A textured rectangle mirrored in U (GP0(E1h) bit 12).
+    pub flip_x: bool,
+    /// A textured rectangle mirrored in V (GP0(E1h) bit 13).
+    pub flip_y: bool,
+    /// GP0(E6h) bit 0.
+    pub mask_set: bool,
+    /// GP0(E6h) bit 1.
+    pub mask_check: bool,
 }
 
 /// A command cut short: the stream ended (or a GP1 write came) before its last word.
@@ -218,8 +389,8 @@ impl Decoded {
         }
     }
 
-    fn field(&mut self, name: &'static str, value: String) {
-        self.fields.push(Field { name, value });
+    fn field(&mut self, field: Field) {
+        self.fields.push(field);
     }
 
     /// Whether every primitive was dropped (false for commands without primitives).
@@ -276,64 +447,6 @@ fn pixel_data_words(words: &[u32]) -> usize {
     (TransferRect::decode(word(1), word(2)).pixels() as usize).div_ceil(2)
 }
 
-fn hex_color(rgb: [u8; 3]) -> String {
-    format!("#{:02x}{:02x}{:02x}", rgb[0], rgb[1], rgb[2])
-}
-
-fn blend_name(b: BlendMode) -> &'static str {
-    match b {
-        BlendMode::Average => "0: B/2+F/2",
-        BlendMode::Add => "1: B+F",
-        BlendMode::Subtract => "2: B-F",
-        BlendMode::AddQuarter => "3: B+F/4",
-    }
-}
-
-fn depth_name(d: TextureDepth) -> &'static str {
-    match d {
-        TextureDepth::Clut4 => "4-bit CLUT",
-        TextureDepth::Clut8 => "8-bit CLUT",
-        TextureDepth::Direct15 => "15-bit direct",
-    }
-}
-
-fn vertex_text(v: &Vertex, textured: bool) -> String {
-    if textured {
-        format!("({}, {}) uv ({}, {})", v.x, v.y, v.u, v.v)
-    } else {
-        format!("({}, {})", v.x, v.y)
-    }
-}
-
-fn texture_fields(d: &mut Decoded, t: &Texture) {
-    d.field(
-        "texpage",
-        format!("({}, {}) {}", t.page_x, t.page_y, depth_name(t.depth)),
-    );
-    if t.depth != TextureDepth::Direct15 {
-        d.field("clut", format!("({}, {})", t.clut_x, t.clut_y));
-    }
-    if t.raw {
-        d.field("raw texture", "yes (unmodulated)".into());
-    }
-}
-
-fn flags_text(items: &[(bool, &str)]) -> String {
-    let mut s = String::new();
-    for (on, name) in items {
-        if *on {
-            if !s.is_empty() {
-                s.push_str(", ");
-            }
-            s.push_str(name);
-        }
-    }
-    if s.is_empty() {
-        s.push('-');
-    }
-    s
-}
-
 /// A VRAM rectangle that may wrap at the edges, as the bounds of all pixels it touches.
 fn wrapped_bounds(x: usize, y: usize, w: usize, h: usize) -> Option<PixelBounds> {
     if w == 0 || h == 0 {
@@ -378,9 +491,16 @@ impl Decoded {
     }
 }
 
-fn transfer_fields(d: &mut Decoded, label: &'static str, r: &TransferRect) {
-    d.field(label, format!("({}, {})", r.x, r.y));
-    d.field("size", format!("{}x{}", r.w, r.h));
+fn size(width: impl Into<u32>, height: impl Into<u32>) -> Field {
+    Field::Size {
+        width: width.into(),
+        height: height.into(),
+    }
+}
+
+/// A vertex's texture coordinate.
+fn uv(v: &Vertex) -> (u8, u8) {
+    (v.u, v.v)
 }
 
 impl Gpu {
@@ -419,9 +539,13 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
         Gp0::Fill => {
             let r = FillRect::decode(packet[1], packet[2]);
             let (x, y, w, h) = (r.x as usize, r.y as usize, r.w as usize, r.h as usize);
-            d.field("color", hex_color(crate::color::unpack888(cmd)));
-            d.field("position", format!("({x}, {y})"));
-            d.field("size", format!("{w}x{h}"));
+            d.field(Field::Color(crate::color::unpack888(cmd)));
+            d.field(Field::Position {
+                x: r.x.into(),
+                y: r.y.into(),
+                uv: None,
+            });
+            d.field(size(r.w, r.h));
             if complete {
                 d.writes = wrapped_bounds(x, y, w, h);
             }
@@ -434,17 +558,19 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
         Gp0::VramCopy => {
             let src = TransferRect::decode(packet[1], packet[3]);
             let dst = TransferRect::decode(packet[2], packet[3]);
-            d.field("source", format!("({}, {})", src.x, src.y));
-            transfer_fields(&mut d, "destination", &dst);
+            d.field(Field::Source { x: src.x, y: src.y });
+            d.field(Field::Destination { x: dst.x, y: dst.y });
+            d.field(size(dst.w, dst.h));
             if complete {
                 d.writes = wrapped_bounds(dst.x.into(), dst.y.into(), dst.w.into(), dst.h.into());
             }
         }
         Gp0::CpuToVram => {
             let r = TransferRect::decode(packet[1], packet[2]);
-            transfer_fields(&mut d, "destination", &r);
+            d.field(Field::Destination { x: r.x, y: r.y });
+            d.field(size(r.w, r.h));
             let data = pixel_data_words(&packet);
-            d.field("data words", format!("{data}"));
+            d.field(Field::DataWords(data));
             if complete {
                 // Data words already received are written even if the rest never comes.
                 let got = words.len().saturating_sub(len).min(data) * 2;
@@ -460,7 +586,8 @@ fn decode_gp0(words: &[u32], draw: &DrawState, texture_disable_allowed: bool) ->
         }
         Gp0::VramToCpu => {
             let r = TransferRect::decode(packet[1], packet[2]);
-            transfer_fields(&mut d, "source", &r);
+            d.field(Field::Source { x: r.x, y: r.y });
+            d.field(size(r.w, r.h));
         }
         Gp0::DrawMode
         | Gp0::TextureWindow
@@ -494,33 +621,37 @@ fn polygon(
     if let Some(second) = &packet.second {
         verts.push(second.vertices[2]);
     }
-    const NAMES: [&str; 4] = ["vertex 0", "vertex 1", "vertex 2", "vertex 3"];
-    const COLORS: [&str; 4] = ["color 0", "color 1", "color 2", "color 3"];
-    for (i, v) in verts.iter().enumerate() {
+    for (i, v) in (0u8..).zip(&verts) {
         if i == 0 || gouraud {
-            d.field(COLORS[i & 3], hex_color(v.color));
+            d.field(Field::VertexColor {
+                vertex: i,
+                rgb: v.color,
+            });
         }
-        d.field(NAMES[i & 3], vertex_text(v, op.textured));
+        d.field(Field::Vertex {
+            vertex: i,
+            x: v.x,
+            y: v.y,
+            uv: op.textured.then(|| uv(v)),
+        });
     }
-    if let Some(t) = &tri.texture {
-        texture_fields(d, t);
+    if let Some(t) = tri.texture {
+        d.field(Field::Texture(t));
     } else if op.textured {
-        d.field("texture", "disabled (E1.11)".into());
+        d.field(Field::TextureDisabled);
     }
     if let Some(b) = tri.blend {
-        d.field("blend", blend_name(b).into());
+        d.field(Field::Blend(b));
     }
-    d.field(
-        "flags",
-        flags_text(&[
-            (gouraud, "Gouraud"),
-            (tri.texture.is_some(), "textured"),
-            (tri.blend.is_some(), "semi-transparent"),
-            (tri.dither, "dithered"),
-            (draw.mask.set, "mask set"),
-            (draw.mask.check, "mask check"),
-        ]),
-    );
+    d.field(Field::Flags(Flags {
+        gouraud,
+        textured: tri.texture.is_some(),
+        semi_transparent: tri.blend.is_some(),
+        dithered: tri.dither,
+        mask_set: draw.mask.set,
+        mask_check: draw.mask.check,
+        ..Flags::default()
+    }));
     if complete {
         d.push_primitive(Primitive::Triangle(
             *tri,
@@ -545,25 +676,31 @@ fn line(
 ) {
     let gouraud = op.gouraud;
     let first = line_packet(op, p, draw);
-    d.field("color 0", hex_color(first.vertices[0].color));
-    d.field("vertex 0", vertex_text(&first.vertices[0], false));
-    if gouraud {
-        d.field("color 1", hex_color(first.vertices[1].color));
+    for (i, v) in (0u8..).zip(&first.vertices) {
+        if i == 0 || gouraud {
+            d.field(Field::VertexColor {
+                vertex: i,
+                rgb: v.color,
+            });
+        }
+        d.field(Field::Vertex {
+            vertex: i,
+            x: v.x,
+            y: v.y,
+            uv: None,
+        });
     }
-    d.field("vertex 1", vertex_text(&first.vertices[1], false));
     if let Some(b) = first.blend {
-        d.field("blend", blend_name(b).into());
+        d.field(Field::Blend(b));
     }
-    d.field(
-        "flags",
-        flags_text(&[
-            (gouraud, "Gouraud"),
-            (first.blend.is_some(), "semi-transparent"),
-            (first.dither, "dithered"),
-            (draw.mask.set, "mask set"),
-            (draw.mask.check, "mask check"),
-        ]),
-    );
+    d.field(Field::Flags(Flags {
+        gouraud,
+        semi_transparent: first.blend.is_some(),
+        dithered: first.dither,
+        mask_set: draw.mask.set,
+        mask_check: draw.mask.check,
+        ..Flags::default()
+    }));
     if !complete {
         return;
     }
@@ -584,7 +721,7 @@ fn line(
                 }
             }
         }
-        d.field("segments", format!("{}", d.primitives.len()));
+        d.field(Field::Segments(d.primitives.len()));
         if !terminated {
             d.truncated = Some(Truncation {
                 have: words.len(),
@@ -604,28 +741,31 @@ fn rectangle(
 ) {
     let rect = rectangle_packet(op, p, draw, texture_disable_allowed);
     let textured = op.textured;
-    d.field("color", hex_color(rect.origin.color));
-    d.field("position", vertex_text(&rect.origin, textured));
-    d.field("size", format!("{}x{}", rect.width, rect.height));
-    if let Some(t) = &rect.texture {
-        texture_fields(d, t);
+    d.field(Field::Color(rect.origin.color));
+    d.field(Field::Position {
+        x: rect.origin.x,
+        y: rect.origin.y,
+        uv: textured.then(|| uv(&rect.origin)),
+    });
+    d.field(size(rect.width, rect.height));
+    if let Some(t) = rect.texture {
+        d.field(Field::Texture(t));
     } else if textured {
-        d.field("texture", "disabled (E1.11)".into());
+        d.field(Field::TextureDisabled);
     }
     if let Some(b) = rect.blend {
-        d.field("blend", blend_name(b).into());
+        d.field(Field::Blend(b));
     }
-    d.field(
-        "flags",
-        flags_text(&[
-            (rect.texture.is_some(), "textured"),
-            (rect.blend.is_some(), "semi-transparent"),
-            (rect.texture.is_some() && rect.flip_x, "flip X"),
-            (rect.texture.is_some() && rect.flip_y, "flip Y"),
-            (draw.mask.set, "mask set"),
-            (draw.mask.check, "mask check"),
-        ]),
-    );
+    let sampled = rect.texture.is_some();
+    d.field(Field::Flags(Flags {
+        textured: sampled,
+        semi_transparent: rect.blend.is_some(),
+        flip_x: sampled && rect.flip_x,
+        flip_y: sampled && rect.flip_y,
+        mask_set: draw.mask.set,
+        mask_check: draw.mask.check,
+        ..Flags::default()
+    }));
     if complete {
         d.push_primitive(Primitive::Rectangle(
             rect,
@@ -644,41 +784,47 @@ fn environment(
     use command::Kind as Gp0;
     let mut after = *draw;
     gp0::apply_environment(&mut after, cmd, texture_disable_allowed);
-    let yes_no = |b: bool| if b { "on" } else { "off" }.into();
     match kind {
         Gp0::DrawMode => {
             let m = after.mode;
-            d.field(
-                "texpage",
-                format!("({}, {}) {}", m.page_x, m.page_y, depth_name(m.depth)),
-            );
-            d.field("blend", blend_name(m.blend).into());
-            d.field("dither", yes_no(m.dither));
-            d.field("draw to display", yes_no(m.draw_to_display));
-            d.field("texture disable", yes_no(m.texture_disable));
-            d.field("flip X", yes_no(m.flip_x));
-            d.field("flip Y", yes_no(m.flip_y));
+            d.field(Field::Texpage {
+                x: m.page_x,
+                y: m.page_y,
+                depth: m.depth,
+            });
+            d.field(Field::Blend(m.blend));
+            d.field(Field::Dither(m.dither));
+            d.field(Field::DrawToDisplay(m.draw_to_display));
+            d.field(Field::TextureDisable(m.texture_disable));
+            d.field(Field::FlipX(m.flip_x));
+            d.field(Field::FlipY(m.flip_y));
         }
         Gp0::TextureWindow => {
             let w = after.window;
-            d.field("mask", format!("({}, {}) x8", w.mask_x, w.mask_y));
-            d.field("offset", format!("({}, {}) x8", w.offset_x, w.offset_y));
+            d.field(Field::WindowMask {
+                x: w.mask_x,
+                y: w.mask_y,
+            });
+            d.field(Field::WindowOffset {
+                x: w.offset_x,
+                y: w.offset_y,
+            });
         }
-        Gp0::AreaTopLeft => d.field(
-            "top-left",
-            format!("({}, {})", after.area.left, after.area.top),
-        ),
-        Gp0::AreaBottomRight => d.field(
-            "bottom-right",
-            format!("({}, {})", after.area.right, after.area.bottom),
-        ),
-        Gp0::DrawingOffset => d.field(
-            "offset",
-            format!("({}, {})", after.offset_x, after.offset_y),
-        ),
+        Gp0::AreaTopLeft => d.field(Field::AreaTopLeft {
+            x: after.area.left,
+            y: after.area.top,
+        }),
+        Gp0::AreaBottomRight => d.field(Field::AreaBottomRight {
+            x: after.area.right,
+            y: after.area.bottom,
+        }),
+        Gp0::DrawingOffset => d.field(Field::DrawingOffset {
+            x: after.offset_x,
+            y: after.offset_y,
+        }),
         Gp0::MaskBits => {
-            d.field("set bit 15", yes_no(after.mask.set));
-            d.field("skip masked", yes_no(after.mask.check));
+            d.field(Field::SetMask(after.mask.set));
+            d.field(Field::CheckMask(after.mask.check));
         }
         _ => {}
     }
@@ -702,24 +848,25 @@ fn decode_gp1(word: u32) -> Decoded {
     };
     let mut d = Decoded::new(Kind::Gp1, name);
     // Field layouts: docs/hardware/gpu.md §9 (psx-spx "GPU Display Control Commands").
+    let bits = |shift: u32, mask: u32| ((word >> shift) & mask) as u16;
     match op {
-        0x03 => d.field("display", if word & 1 != 0 { "off" } else { "on" }.into()),
-        0x04 => d.field("direction", format!("{}", word & 3)),
-        0x05 => d.field(
-            "start",
-            format!("({}, {})", word & 0x3FF, (word >> 10) & 0x1FF),
-        ),
-        0x06 => d.field(
-            "x1..x2",
-            format!("{}..{}", word & 0xFFF, (word >> 12) & 0xFFF),
-        ),
-        0x07 => d.field(
-            "y1..y2",
-            format!("{}..{}", word & 0x3FF, (word >> 10) & 0x3FF),
-        ),
-        0x08 => d.field("mode bits", format!("{:02x}h", word & 0xFF)),
-        0x09 => d.field("allowed", format!("{}", word & 1)),
-        0x10..=0x1F => d.field("register", format!("{}", word & 7)),
+        0x03 => d.field(Field::DisplayEnabled(word & 1 == 0)),
+        0x04 => d.field(Field::DmaDirection((word & 3) as u8)),
+        0x05 => d.field(Field::DisplayStart {
+            x: bits(0, 0x3FF),
+            y: bits(10, 0x1FF),
+        }),
+        0x06 => d.field(Field::HorizontalRange {
+            x1: bits(0, 0xFFF),
+            x2: bits(12, 0xFFF),
+        }),
+        0x07 => d.field(Field::VerticalRange {
+            y1: bits(0, 0x3FF),
+            y2: bits(10, 0x3FF),
+        }),
+        0x08 => d.field(Field::DisplayMode(word as u8)),
+        0x09 => d.field(Field::TextureDisableAllowed(word & 1 != 0)),
+        0x10..=0x1F => d.field(Field::InfoRegister((word & 7) as u8)),
         _ => {}
     }
     d
@@ -819,7 +966,7 @@ impl<'a> Tracer<'a> {
             self.line += 1;
             self.word = 0;
             let mut decoded = Decoded::new(Kind::Continuation, "continuation");
-            decoded.field("words", format!("{}", words.len()));
+            decoded.field(Field::Words(words.len()));
             return Some(TracedCommand {
                 line: start_line,
                 last_line: start_line,
@@ -919,9 +1066,20 @@ mod tests {
         gpu.gp0(0xE500_0000 | 5 | (7 << 11));
         let d = gpu.decode_gp0(&[0x2000_00FF, 0x0002_0001, 0x0000_0040, 0x0040_0000]);
         assert_eq!(d.name, "F3 polygon");
-        let v0 = d.fields.iter().find(|f| f.name == "vertex 0").unwrap();
-        assert_eq!(v0.value, "(6, 9)");
-        assert_eq!(d.fields[0].value, "#ff0000");
+        let v0 = d.fields.iter().find_map(|f| match *f {
+            Field::Vertex {
+                vertex: 0, x, y, ..
+            } => Some((x, y)),
+            _ => None,
+        });
+        assert_eq!(v0, Some((6, 9)));
+        assert_eq!(
+            d.fields[0],
+            Field::VertexColor {
+                vertex: 0,
+                rgb: [0xFF, 0, 0]
+            }
+        );
         match d.primitives[0].coverage() {
             Coverage::Drawn(b) => assert_eq!((b.left, b.top, b.right, b.bottom), (5, 7, 69, 71)),
             c => panic!("{c:?}"),

@@ -484,19 +484,6 @@ pub enum DropReason {
     Clipped,
 }
 
-impl DropReason {
-    /// A short human-readable description.
-    pub fn describe(self) -> &'static str {
-        match self {
-            DropReason::SizeLimit => {
-                "size limit: a vertex pair is >= 1024 apart in X or >= 512 in Y"
-            }
-            DropReason::ZeroArea => "zero area",
-            DropReason::Clipped => "clipped away: outside the drawing area",
-        }
-    }
-}
-
 /// An inclusive VRAM rectangle: every pixel a primitive can write lies inside it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct PixelBounds {

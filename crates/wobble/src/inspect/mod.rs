@@ -3,8 +3,9 @@
 //! every command decoded by the `gpu` crate, what each draw changed in VRAM, the texture it
 //! sampled, and which command last changed each pixel (docs/inspect.md).
 //!
-//! Every command's names, fields and drop reasons come from [`gpu::decode`]; this module
-//! only runs the commands, compares VRAM before and after each, and writes files.
+//! Every command's names, fields and drop reasons come from [`gpu::decode`], typed; this
+//! module runs the commands, compares VRAM before and after each, writes the decoded values
+//! as text (`text`) and writes files.
 
 use base64_lite::encode as base64;
 use gpu::TextureDepth;
@@ -22,6 +23,7 @@ use crate::vram_image::{self, Expand};
 
 mod base64_lite;
 mod frame;
+mod text;
 
 pub use frame::write_frame_report;
 
@@ -273,7 +275,7 @@ fn prim_json(p: &Primitive) -> Value {
         .collect();
     let (fate, bounds) = match p.coverage() {
         Coverage::Drawn(b) => (Value::Null, json!([b.left, b.top, b.right, b.bottom])),
-        Coverage::Dropped(r) => (json!(r.describe()), Value::Null),
+        Coverage::Dropped(r) => (json!(text::drop_reason(r)), Value::Null),
     };
     json!({ "kind": kind, "pts": pts, "fate": fate, "bounds": bounds })
 }
@@ -308,17 +310,6 @@ fn class_code(d: &Decoded) -> char {
         Class::Environment => 'e',
         Class::Display => 'g',
         Class::Other => 'o',
-    }
-}
-
-/// The class's name in a row's data.
-fn class_name(class: Class) -> &'static str {
-    match class {
-        Class::Draw => "draw",
-        Class::Transfer => "transfer",
-        Class::Environment => "environment",
-        Class::Display => "display",
-        Class::Other => "other",
     }
 }
 
@@ -641,10 +632,13 @@ fn run_one(
         summary.images += 1;
         img = json!({ "png": name, "crop": [c.x, c.y, c.w, c.h, c.scale] });
     }
-    let fields: Vec<[&str; 2]> = d
-        .fields
+    let mut fields = Vec::with_capacity(d.fields.len());
+    for f in &d.fields {
+        text::field_rows(f, &mut fields);
+    }
+    let fields: Vec<[&str; 2]> = fields
         .iter()
-        .map(|f| [f.name, f.value.as_str()])
+        .map(|(name, value)| [name.as_str(), value.as_str()])
         .collect();
     let truncated = d.truncated.map(|t| match t.need {
         Some(n) => format!("truncated: {} of {n} words", t.have),
@@ -658,7 +652,7 @@ fn run_one(
         "line": cmd.line,
         "last": cmd.last_line,
         "port": match cmd.port { Port::Gp0 => "GP0", Port::Gp1 => "GP1" },
-        "kind": class_name(d.kind.class()),
+        "kind": text::class_name(d.kind.class()),
         "name": d.name,
         "fields": fields,
         "words": words_text(&cmd.words),
