@@ -12,6 +12,8 @@
 //! assert_eq!(Command::of(0xA000_0000).tail, Tail::PixelData);
 //! ```
 
+use crate::state::sext11;
+
 /// What a GP0 command does (docs/hardware/gpu.md §2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Kind {
@@ -114,18 +116,43 @@ pub(crate) const MAX_PACKET: usize = {
     max
 };
 
-/// The row of command byte `op` (docs/hardware/gpu.md §2, §8; psx-spx "GPU Command
-/// Summary", "GPU Other Commands").
+/// GP0(00h): no operation.
+pub const NOP: u8 = 0x00;
+/// GP0(01h): invalidate the CLUT cache.
+pub const CLEAR_CACHE: u8 = 0x01;
+/// GP0(02h): fill a rectangle.
+pub const FILL: u8 = 0x02;
+/// GP0(1Fh): raise the GPU IRQ.
+pub const IRQ: u8 = 0x1F;
+/// GP0(80h), the first of 80h-9Fh: VRAM-to-VRAM copy.
+pub const VRAM_COPY: u8 = 0x80;
+/// GP0(A0h), the first of A0h-BFh: CPU-to-VRAM transfer.
+pub const CPU_TO_VRAM: u8 = 0xA0;
+/// GP0(C0h), the first of C0h-DFh: VRAM-to-CPU transfer.
+pub const VRAM_TO_CPU: u8 = 0xC0;
+/// GP0(E1h): draw mode.
+pub const DRAW_MODE: u8 = 0xE1;
+/// GP0(E2h): texture window.
+pub const TEXTURE_WINDOW: u8 = 0xE2;
+/// GP0(E3h): drawing area top-left corner.
+pub const AREA_TOP_LEFT: u8 = 0xE3;
+/// GP0(E4h): drawing area bottom-right corner.
+pub const AREA_BOTTOM_RIGHT: u8 = 0xE4;
+/// GP0(E5h): drawing offset.
+pub const DRAWING_OFFSET: u8 = 0xE5;
+/// GP0(E6h): mask bit settings.
+pub const MASK_BITS: u8 = 0xE6;
+
+/// The row of command byte `op`: bits 29-31 give the class, 1 polygon, 2 line, 3
+/// rectangle, 4 VRAM copy, 5 CPU to VRAM, 6 VRAM to CPU (docs/hardware/gpu.md §2, §8;
+/// psx-spx "GPU Command Summary", "GPU Other Commands").
 const fn row(op: u8) -> Command {
-    let (kind, words, tail, name) = match op {
-        0x01 => (Kind::ClearCache, 1, Tail::None, "clear cache"),
-        0x02 => (Kind::Fill, 3, Tail::None, "fill"),
-        0x1F => (Kind::Irq, 1, Tail::None, "IRQ"),
-        0x20..=0x3F => {
+    let (kind, words, tail, name) = match op >> 5 {
+        1 => {
             let p = PolygonOp::from_op(op);
             (Kind::Polygon(p), p.words(), Tail::None, p.name())
         }
-        0x40..=0x5F => {
+        2 => {
             let l = LineOp::from_op(op);
             let tail = if l.polyline {
                 Tail::PolylineVertices
@@ -134,32 +161,37 @@ const fn row(op: u8) -> Command {
             };
             (Kind::Line(l), l.words(), tail, l.name())
         }
-        0x60..=0x7F => {
+        3 => {
             let r = RectangleOp::from_op(op);
             (Kind::Rectangle(r), r.words(), Tail::None, r.name())
         }
-        0x80..=0x9F => (Kind::VramCopy, 4, Tail::None, "VRAM copy"),
-        0xA0..=0xBF => (Kind::CpuToVram, 3, Tail::PixelData, "CPU to VRAM"),
-        0xC0..=0xDF => (Kind::VramToCpu, 3, Tail::None, "VRAM to CPU"),
-        0xE1 => (Kind::DrawMode, 1, Tail::None, "draw mode"),
-        0xE2 => (Kind::TextureWindow, 1, Tail::None, "texture window"),
-        0xE3 => (Kind::AreaTopLeft, 1, Tail::None, "drawing area top-left"),
-        0xE4 => (
-            Kind::AreaBottomRight,
-            1,
-            Tail::None,
-            "drawing area bottom-right",
-        ),
-        0xE5 => (Kind::DrawingOffset, 1, Tail::None, "drawing offset"),
-        0xE6 => (Kind::MaskBits, 1, Tail::None, "mask bits"),
-        _ => (Kind::Nop, 1, Tail::None, "NOP"),
+        4 => (Kind::VramCopy, 4, Tail::None, "VRAM copy"),
+        5 => (Kind::CpuToVram, 3, Tail::PixelData, "CPU to VRAM"),
+        6 => (Kind::VramToCpu, 3, Tail::None, "VRAM to CPU"),
+        _ => match op {
+            CLEAR_CACHE => (Kind::ClearCache, 1, Tail::None, "clear cache"),
+            FILL => (Kind::Fill, 3, Tail::None, "fill"),
+            IRQ => (Kind::Irq, 1, Tail::None, "IRQ"),
+            DRAW_MODE => (Kind::DrawMode, 1, Tail::None, "draw mode"),
+            TEXTURE_WINDOW => (Kind::TextureWindow, 1, Tail::None, "texture window"),
+            AREA_TOP_LEFT => (Kind::AreaTopLeft, 1, Tail::None, "drawing area top-left"),
+            AREA_BOTTOM_RIGHT => (
+                Kind::AreaBottomRight,
+                1,
+                Tail::None,
+                "drawing area bottom-right",
+            ),
+            DRAWING_OFFSET => (Kind::DrawingOffset, 1, Tail::None, "drawing offset"),
+            MASK_BITS => (Kind::MaskBits, 1, Tail::None, "mask bits"),
+            _ => (Kind::Nop, 1, Tail::None, "NOP"),
+        },
     };
     Command {
         op,
         kind,
         words,
         tail,
-        takes_fifo_space: !matches!(op, 0x00 | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF),
+        takes_fifo_space: !matches!(op, NOP | 0x04..=0x1E | 0xE0 | 0xE3..=0xE5 | 0xE7..=0xEF),
         name,
     }
 }
@@ -480,13 +512,8 @@ pub const fn position(word: u32) -> (i32, i32) {
 }
 
 /// The position word of (x, y): their low 11 bits (docs/hardware/gpu.md §2).
-pub const fn position_word_of(x: i32, y: i32) -> u32 {
+pub const fn position_bits(x: i32, y: i32) -> u32 {
     (x as u32 & 0x7FF) | (y as u32 & 0x7FF) << 16
-}
-
-/// Sign-extend the low 11 bits (docs/hardware/gpu.md §2).
-pub(crate) const fn sext11(v: u32) -> i32 {
-    ((v << 21) as i32) >> 21
 }
 
 #[cfg(test)]
@@ -636,7 +663,7 @@ mod tests {
     fn positions_are_signed_11_bit() {
         assert_eq!(position(0x0400_03FF), (1023, 1024 - 2048));
         assert_eq!(position(0xF800_F800), (0, 0));
-        assert_eq!(position_word_of(-1, 5), 0x0005_07FF);
+        assert_eq!(position_bits(-1, 5), 0x0005_07FF);
         assert!(is_terminator(0x5555_5555) && is_terminator(0x5000_5000));
         assert!(!is_terminator(0x5000_4000));
     }

@@ -10,7 +10,7 @@ use crate::rasterizer::{
     DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
     draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
-use crate::state::{ClutAttr, DrawMode, DrawState, Texpage};
+use crate::state::{ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, TextureWindow};
 use crate::transfer::{self, FillRect, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
@@ -197,63 +197,20 @@ impl Gp0State {
     }
 }
 
-impl DrawMode {
-    /// GP0(E1h) bits 0-13 (docs/hardware/gpu.md §2).
-    pub fn from_e1(word: u32) -> Self {
-        let mut m = DrawMode::default();
-        m.set_texpage(word);
-        m.dither = word & (1 << 9) != 0;
-        m.draw_to_display = word & (1 << 10) != 0;
-        m.flip_x = word & (1 << 12) != 0;
-        m.flip_y = word & (1 << 13) != 0;
-        m
-    }
-
-    /// The bits a polygon's texpage attribute rewrites: 0-8 and 11, never 9-10 (docs/hardware/gpu.md §2).
-    pub fn set_texpage(&mut self, attr: u32) {
-        let t = Texpage::from_bits(attr);
-        self.page_x = t.page_x;
-        self.page_y = t.page_y;
-        self.blend = t.blend;
-        self.depth = t.depth;
-        self.depth_reserved = t.depth_reserved;
-        self.texture_disable = t.texture_disable;
-    }
-}
-
 /// GP0(E1h)-(E6h): update the drawing environment (docs/hardware/gpu.md §2).
 pub(crate) fn apply_environment(draw: &mut DrawState, cmd: u32, texture_disable_allowed: bool) {
     match Command::of(cmd).kind {
         Kind::DrawMode => {
-            let texture_disable = cmd & (1 << 11) != 0 && texture_disable_allowed;
-            draw.mode = DrawMode::from_e1(cmd);
-            draw.mode.texture_disable = texture_disable;
+            draw.mode = DrawMode::from_bits(cmd);
+            draw.mode.texture_disable &= texture_disable_allowed;
         }
-        Kind::TextureWindow => {
-            let w = &mut draw.window;
-            w.mask_x = (cmd & 0x1F) as u8;
-            w.mask_y = (cmd >> 5 & 0x1F) as u8;
-            w.offset_x = (cmd >> 10 & 0x1F) as u8;
-            w.offset_y = (cmd >> 15 & 0x1F) as u8;
-        }
-        // X bits 0-9, Y bits 10-19 on the v2 GPU (docs/hardware/gpu.md §2; docs/gpu.md
-        // "Modelled GPU version").
-        Kind::AreaTopLeft => {
-            draw.area.left = (cmd & 0x3FF) as u16;
-            draw.area.top = (cmd >> 10 & 0x3FF) as u16;
-        }
+        Kind::TextureWindow => draw.window = TextureWindow::from_bits(cmd),
+        Kind::AreaTopLeft => (draw.area.left, draw.area.top) = DrawingArea::corner_from_bits(cmd),
         Kind::AreaBottomRight => {
-            draw.area.right = (cmd & 0x3FF) as u16;
-            draw.area.bottom = (cmd >> 10 & 0x3FF) as u16;
+            (draw.area.right, draw.area.bottom) = DrawingArea::corner_from_bits(cmd);
         }
-        Kind::DrawingOffset => {
-            draw.offset_x = command::sext11(cmd) as i16;
-            draw.offset_y = command::sext11(cmd >> 11) as i16;
-        }
-        Kind::MaskBits => {
-            draw.mask.set = cmd & 1 != 0;
-            draw.mask.check = cmd & 2 != 0;
-        }
+        Kind::DrawingOffset => (draw.offset_x, draw.offset_y) = DrawState::offset_from_bits(cmd),
+        Kind::MaskBits => draw.mask = MaskSettings::from_bits(cmd),
         _ => {}
     }
 }

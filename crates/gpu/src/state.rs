@@ -194,6 +194,58 @@ pub struct DrawMode {
     pub flip_y: bool,
 }
 
+impl DrawMode {
+    /// Decode GP0(E1h) bits 0-13; the others are ignored (docs/hardware/gpu.md §2).
+    pub const fn from_bits(word: u32) -> Self {
+        let t = Texpage::from_bits(word);
+        DrawMode {
+            page_x: t.page_x,
+            page_y: t.page_y,
+            blend: t.blend,
+            depth: t.depth,
+            depth_reserved: t.depth_reserved,
+            texture_disable: t.texture_disable,
+            dither: word & (1 << 9) != 0,
+            draw_to_display: word & (1 << 10) != 0,
+            flip_x: word & (1 << 12) != 0,
+            flip_y: word & (1 << 13) != 0,
+        }
+    }
+
+    /// Encode GP0(E1h) bits 0-13 (docs/hardware/gpu.md §2).
+    pub const fn bits(self) -> u32 {
+        self.texpage().bits()
+            | (self.dither as u32) << 9
+            | (self.draw_to_display as u32) << 10
+            | (self.flip_x as u32) << 12
+            | (self.flip_y as u32) << 13
+    }
+
+    /// The fields a texpage attribute shares with the mode: bits 0-8 and 11.
+    pub const fn texpage(self) -> Texpage {
+        Texpage {
+            page_x: self.page_x,
+            page_y: self.page_y,
+            blend: self.blend,
+            depth: self.depth,
+            depth_reserved: self.depth_reserved,
+            texture_disable: self.texture_disable,
+        }
+    }
+
+    /// Take a polygon's texpage attribute: it rewrites bits 0-8 and 11, never 9-10
+    /// (docs/hardware/gpu.md §2).
+    pub fn set_texpage(&mut self, attr: u32) {
+        let t = Texpage::from_bits(attr);
+        self.page_x = t.page_x;
+        self.page_y = t.page_y;
+        self.blend = t.blend;
+        self.depth = t.depth;
+        self.depth_reserved = t.depth_reserved;
+        self.texture_disable = t.texture_disable;
+    }
+}
+
 /// GP0(E2h) texture window, each field in 8-texel units (5 bits) (docs/hardware/gpu.md §2, §7).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -206,6 +258,26 @@ pub struct TextureWindow {
     pub offset_x: u8,
     /// Offset Y (bits 15-19).
     pub offset_y: u8,
+}
+
+impl TextureWindow {
+    /// Decode GP0(E2h) bits 0-19 (docs/hardware/gpu.md §2).
+    pub const fn from_bits(word: u32) -> Self {
+        TextureWindow {
+            mask_x: (word & 0x1F) as u8,
+            mask_y: (word >> 5 & 0x1F) as u8,
+            offset_x: (word >> 10 & 0x1F) as u8,
+            offset_y: (word >> 15 & 0x1F) as u8,
+        }
+    }
+
+    /// Encode GP0(E2h) bits 0-19; each field is taken modulo 32 (docs/hardware/gpu.md §2).
+    pub const fn bits(self) -> u32 {
+        (self.mask_x as u32 & 0x1F)
+            | (self.mask_y as u32 & 0x1F) << 5
+            | (self.offset_x as u32 & 0x1F) << 10
+            | (self.offset_y as u32 & 0x1F) << 15
+    }
 }
 
 /// GP0(E3h)/(E4h) drawing area, inclusive bounds (docs/hardware/gpu.md §2). X is 10 bits; Y is 10 bits
@@ -224,6 +296,19 @@ pub struct DrawingArea {
     pub bottom: u16,
 }
 
+impl DrawingArea {
+    /// Decode a GP0(E3h)/(E4h) corner: X bits 0-9, Y bits 10-19 on the v2 GPU
+    /// (docs/hardware/gpu.md §2; docs/gpu.md "Modelled GPU version").
+    pub const fn corner_from_bits(word: u32) -> (u16, u16) {
+        ((word & 0x3FF) as u16, (word >> 10 & 0x3FF) as u16)
+    }
+
+    /// Encode a GP0(E3h)/(E4h) corner; X and Y are taken modulo 1024.
+    pub const fn corner_bits(x: u16, y: u16) -> u32 {
+        (x as u32 & 0x3FF) | (y as u32 & 0x3FF) << 10
+    }
+}
+
 /// GP0(E6h) mask bit settings (docs/hardware/gpu.md §6).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
@@ -232,6 +317,21 @@ pub struct MaskSettings {
     pub set: bool,
     /// Skip destination pixels whose bit 15 is set (E6 bit 1).
     pub check: bool,
+}
+
+impl MaskSettings {
+    /// Decode GP0(E6h) bits 0-1 (docs/hardware/gpu.md §2).
+    pub const fn from_bits(word: u32) -> Self {
+        MaskSettings {
+            set: word & 1 != 0,
+            check: word & 2 != 0,
+        }
+    }
+
+    /// Encode GP0(E6h) bits 0-1.
+    pub const fn bits(self) -> u32 {
+        self.set as u32 | (self.check as u32) << 1
+    }
 }
 
 /// The whole drawing environment a primitive is drawn with.
@@ -253,6 +353,17 @@ pub struct DrawState {
 }
 
 impl DrawState {
+    /// Decode a GP0(E5h) drawing offset: X bits 0-10, Y bits 11-21, each signed 11-bit
+    /// (docs/hardware/gpu.md §2).
+    pub const fn offset_from_bits(word: u32) -> (i16, i16) {
+        (sext11(word) as i16, sext11(word >> 11) as i16)
+    }
+
+    /// Encode a GP0(E5h) drawing offset: the low 11 bits of X and Y.
+    pub const fn offset_bits(x: i16, y: i16) -> u32 {
+        (x as u32 & 0x7FF) | (y as u32 & 0x7FF) << 11
+    }
+
     /// Every field within what E1-E6 and texpage attributes can set (docs/hardware/gpu.md §2):
     /// page X a multiple of 64 up to 960, page Y 0 or 256, window fields 5 bits, area corners
     /// 10 bits, offsets signed 11 bits, the reserved depth read as 15-bit.
@@ -282,6 +393,11 @@ impl DrawState {
             Ok(())
         }
     }
+}
+
+/// Sign-extend the low 11 bits (docs/hardware/gpu.md §2).
+pub(crate) const fn sext11(v: u32) -> i32 {
+    ((v << 21) as i32) >> 21
 }
 
 #[cfg(test)]
