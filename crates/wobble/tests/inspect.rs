@@ -6,6 +6,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use gpu::command_stream::{self, Port};
+use gpu::encode::{self, Polygon, Rectangle, SpriteSize, Vertex};
 use gpu::{Gpu, VRAM_LEN};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -44,6 +45,39 @@ fn rows(dir: &Path) -> Vec<Value> {
         all.extend(chunk);
     }
     all
+}
+
+/// A command stream's text: one `gp0` line per packet.
+fn gp0_lines<'a>(packets: impl IntoIterator<Item = &'a [u32]>) -> String {
+    let mut text = String::new();
+    for packet in packets {
+        text.push_str("gp0");
+        for w in packet {
+            text.push_str(&format!(" {w:08x}"));
+        }
+        text.push('\n');
+    }
+    text
+}
+
+/// The drawing area from (0, 0) to (`right`, `bottom`) and no drawing offset.
+fn area(right: u16, bottom: u16) -> [u32; 3] {
+    [
+        encode::area_top_left(0, 0),
+        encode::area_bottom_right(right, bottom),
+        encode::drawing_offset(0, 0),
+    ]
+}
+
+/// A flat yellow triangle.
+fn triangle(v: [(i16, i16); 3]) -> encode::Packet {
+    Polygon::triangle(v.map(|(x, y)| Vertex {
+        x,
+        y,
+        color: [0xFF, 0xFF, 0],
+        ..Vertex::default()
+    }))
+    .packet()
 }
 
 fn report(text: &str, name: &str) -> (InspectSummary, Vec<Value>, PathBuf) {
@@ -240,13 +274,18 @@ fn hardware_fixtures_large() {
 fn drop_reasons_are_reported() {
     // Drawing area 0,0-1023,511, then: a triangle 1024 wide (size limit), a collinear one
     // (zero area), and with a 16x16 area one outside it (clipped away).
-    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
-                gp0 2000ffff 00000000 00000400 00100000\n\
-                gp0 2000ffff 00000000 00010001 00020002\n\
-                gp0 e4003c0f\n\
-                gp0 2000ffff 00200020 00200030 00300020\n\
-                gp0 2000ffff 00000000 00000008 00080000\n";
-    let (s, rows, dir) = report(text, "drops");
+    let [top_left, bottom_right, offset] = area(1023, 511);
+    let text = gp0_lines([
+        &[top_left][..],
+        &[bottom_right],
+        &[offset],
+        &triangle([(0, 0), (1024, 0), (0, 16)]),
+        &triangle([(0, 0), (1, 1), (2, 2)]),
+        &[encode::area_bottom_right(15, 15)],
+        &triangle([(32, 32), (48, 32), (32, 48)]),
+        &triangle([(0, 0), (8, 0), (0, 8)]),
+    ]);
+    let (s, rows, dir) = report(&text, "drops");
     let fate = |i: usize| rows[i]["prims"][0]["fate"].as_str().map(str::to_string);
     assert!(fate(3).unwrap().starts_with("size limit"));
     assert_eq!(fate(4).unwrap(), "zero area");
@@ -308,10 +347,23 @@ fn draw_covering_all_vram() {
     // Fills of the whole VRAM (1024x511 and the last line: fill heights are 9 bits), then
     // a 1023x511 rectangle: scaled-down images, exact counts (docs/hardware/gpu.md §8: w = ((3F1h & 3FFh)
     // + Fh) & ~Fh = 1024).
-    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
-                gp0 02102030 00000000 01ff03f1\n\
-                gp0 02102030 01ff0000 000103f1\n\
-                gp0 6000ff00 00000000 01ff03ff\n";
+    let [top_left, bottom_right, offset] = area(1023, 511);
+    let color = [0x30, 0x20, 0x10];
+    let rectangle = Rectangle {
+        color: [0, 0xFF, 0],
+        width: 1023,
+        height: 511,
+        ..Rectangle::default()
+    };
+    let text = gp0_lines([
+        &[top_left][..],
+        &[bottom_right],
+        &[offset],
+        &encode::fill(color, 0, 0, 0x3F1, 511),
+        &encode::fill(color, 0, 511, 0x3F1, 1),
+        &rectangle.packet(),
+    ]);
+    let text = text.as_str();
     let (s, rows, dir) = report(text, "whole");
     assert_eq!(s.changed[3], 1024 * 511);
     assert_eq!(s.changed[4], 1024);
@@ -326,15 +378,26 @@ fn draw_covering_all_vram() {
 fn a_million_commands_stay_usable() {
     // 10^6 commands: environment words and small rectangles. The report must finish and
     // page its rows into chunk files.
-    let mut text = String::from("gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n");
+    let mut text = gp0_lines(area(1023, 511).iter().map(core::slice::from_ref));
+    let environment = [
+        encode::draw_mode(gpu::DrawMode::default()),
+        encode::mask_bits(gpu::MaskSettings::default()),
+    ];
     for i in 0..333_333u32 {
-        let (x, y) = (i % 1000, (i / 1000) % 500);
-        text.push_str(&format!(
-            "gp0 e1000000\ngp0 e6000000\ngp0 6800{:04x} {:04x}{:04x}\n",
-            i & 0xFFFF,
+        let (x, y) = ((i % 1000) as i16, ((i / 1000) % 500) as i16);
+        let [r, g, ..] = i.to_le_bytes();
+        let pixel = Rectangle {
+            x,
             y,
-            x
-        ));
+            color: [r, g, 0],
+            size: SpriteSize::One,
+            ..Rectangle::default()
+        };
+        text.push_str(&gp0_lines([
+            &environment[..1],
+            &environment[1..],
+            &pixel.packet(),
+        ]));
     }
     let commands = command_stream::parse(&text).unwrap();
     assert_eq!(commands.len(), 1_000_002);

@@ -5,6 +5,7 @@
 
 use super::trace::{FrameRecorder, PacketOrigin};
 use crate::scene::Screen;
+use gpu::encode::{self, ENVIRONMENT_WORDS};
 use gpu::{DisplayArea, Gpu, OrderingTable};
 
 /// GP1(00h): reset the GPU.
@@ -51,7 +52,7 @@ pub(super) fn start_display(gpu: &mut Gpu, screen: &Screen) -> DisplayArea {
 pub(super) struct FrameEnvironment {
     /// Draw mode (E1h, with the dither bit), texture window (E2h), drawing area (E3h, E4h),
     /// drawing offset (E5h), mask (E6h).
-    environment: [u32; 6],
+    environment: [u32; ENVIRONMENT_WORDS],
     /// GP0(02h): fill the back buffer with the background colour.
     fill: [u32; 3],
     /// GP1(05h): display the back buffer.
@@ -61,22 +62,23 @@ pub(super) struct FrameEnvironment {
 impl FrameEnvironment {
     pub(super) fn new(screen: &Screen, frame: u32, dither: bool) -> Self {
         let buffer_y = (frame % 2) * u32::from(screen.height);
-        let (w, h) = (u32::from(screen.width), u32::from(screen.height));
-        let [r, g, b] = screen.background.map(u32::from);
+        let (w, h, y) = (screen.width, screen.height, buffer_y as u16);
         Self {
-            environment: [
-                0xE100_0000 | (dither as u32) << 9,
-                0xE200_0000,
-                0xE300_0000 | buffer_y << 10,
-                0xE400_0000 | (buffer_y + h - 1) << 10 | (w - 1),
-                0xE500_0000 | (buffer_y & 0x7FF) << 11,
-                0xE600_0000,
-            ],
-            fill: [
-                0x0200_0000 | r | g << 8 | b << 16,
-                buffer_y << 16,
-                h << 16 | w,
-            ],
+            environment: encode::environment(&gpu::DrawState {
+                mode: gpu::DrawMode {
+                    dither,
+                    ..gpu::DrawMode::default()
+                },
+                area: gpu::DrawingArea {
+                    left: 0,
+                    top: y,
+                    right: w - 1,
+                    bottom: y + h - 1,
+                },
+                offset_y: y as i16,
+                ..gpu::DrawState::default()
+            }),
+            fill: encode::fill(screen.background, 0, y, w, h),
             display: gp1_display_start(buffer_y),
         }
     }

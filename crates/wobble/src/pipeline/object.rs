@@ -20,7 +20,7 @@ pub(super) struct PreparedObject {
     pub(super) split_extent: i32,
     /// The CLUT and texpage attributes of its polygons (docs/hardware/gpu.md §7), when it
     /// is textured; the texpage carries the blend mode.
-    pub(super) texture: Option<(u32, u32)>,
+    pub(super) texture: Option<(gpu::ClutAttr, gpu::Texpage)>,
     /// Its semi-transparency mode, when semi-transparent.
     pub(super) blend: Option<u8>,
 }
@@ -43,7 +43,7 @@ impl PreparedObject {
             let depth = scene.textures.get(t)?.texture.depth;
             let p = placements.get(t)?;
             let mode = gpu::BlendMode::from_bits(u32::from(blend.unwrap_or(0)));
-            Some((p.clut_attr().bits(), p.texpage(depth, mode).bits()))
+            Some((p.clut_attr(), p.texpage(depth, mode)))
         });
         Some(Self {
             mesh: prepare(scene, index),

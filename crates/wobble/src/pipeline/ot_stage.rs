@@ -47,11 +47,9 @@ pub(super) fn link(
 ) -> usize {
     ot.clear();
     let mut linked = 0;
-    let mut packet = [0u32; 12];
     for (k, f) in faces.iter().enumerate() {
         let entry = usize::from(f.ot_index);
-        let len = f.packet(&mut packet);
-        if ot.insert(entry, &packet[..len]).is_ok() {
+        if ot.insert(entry, &f.packet()).is_ok() {
             linked += 1;
             if let Some(t) = trace.as_deref_mut() {
                 t.linked(first_node(ot, entry), k, false);

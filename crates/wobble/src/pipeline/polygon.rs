@@ -7,6 +7,8 @@
 //! interpolation: the flat-only sphere's GPU stage costs half the textured sphere's
 //! (docs/pipeline.md, "Benchmarks").
 
+use gpu::encode::{self, Packet, Polygon, PolygonTexture, Vertex};
+
 /// A polygon after the GTE stage, waiting for its packet.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct ProjectedFace {
@@ -17,7 +19,7 @@ pub(super) struct ProjectedFace {
     pub(super) quad: bool,
     pub(super) ot_index: u16,
     /// The CLUT and texpage attributes of a textured polygon.
-    pub(super) texture: Option<(u32, u32)>,
+    pub(super) texture: Option<(gpu::ClutAttr, gpu::Texpage)>,
     /// The semi-transparency mode of a semi-transparent polygon.
     pub(super) blend: Option<u8>,
 }
@@ -28,60 +30,40 @@ pub(super) fn rgb_word([r, g, b]: [u8; 3]) -> u32 {
 }
 
 impl ProjectedFace {
-    /// The GP0 polygon packet of this face, written to the start of `out`; returns its
-    /// length. Gouraud (G3/G4/GT3/GT4) only when the vertex colours differ; otherwise the
-    /// flat packet, which the GPU draws without colour interpolation.
-    pub(super) fn packet(&self, out: &mut [u32; 12]) -> usize {
+    /// The GP0 polygon packet of this face. Gouraud (G3/G4/GT3/GT4) only when the vertex
+    /// colours differ; otherwise the flat packet, which the GPU draws without colour
+    /// interpolation.
+    pub(super) fn packet(&self) -> Packet {
         let n = if self.quad { 4 } else { 3 };
-        let gouraud = self.color[1..n].iter().any(|c| *c != self.color[0]);
-        let mut op = 0x20u32 | if self.quad { 0x08 } else { 0 };
-        if gouraud {
-            op |= 0x10;
+        let vertex = |i: usize| {
+            let ((x, y), (u, v)) = (self.xy[i], self.uv[i]);
+            let [r, g, b, _] = self.color[i].to_le_bytes();
+            let color = [r, g, b];
+            Vertex { x, y, color, u, v }
+        };
+        Polygon {
+            vertices: [vertex(0), vertex(1), vertex(2), vertex(3)],
+            quad: self.quad,
+            gouraud: self.color[1..n].iter().any(|c| *c != self.color[0]),
+            semi_transparent: self.blend.is_some(),
+            texture: self.texture.map(|(clut, page)| PolygonTexture {
+                clut,
+                page,
+                raw: false,
+            }),
         }
-        if self.texture.is_some() {
-            op |= 0x04;
-        }
-        if self.blend.is_some() {
-            op |= 0x02;
-        }
-        let mut len = 0;
-        for i in 0..n {
-            let rgb = self.color[i];
-            if i == 0 {
-                out[len] = op << 24 | rgb;
-                len += 1;
-            } else if gouraud {
-                out[len] = rgb;
-                len += 1;
-            }
-            let (x, y) = self.xy[i];
-            out[len] = (x as u16 as u32 & 0x7FF) | (y as u16 as u32 & 0x7FF) << 16;
-            len += 1;
-            if let Some((clut, tpage)) = self.texture {
-                let (u, v) = self.uv[i];
-                let attr = match i {
-                    0 => clut,
-                    1 => tpage,
-                    _ => 0,
-                };
-                out[len] = u as u32 | (v as u32) << 8 | attr << 16;
-                len += 1;
-            }
-        }
-        len
+        .packet()
     }
 
     /// An untextured polygon has no texpage attribute to carry its blend mode: the draw-mode
     /// word (E1h) that must reach GP0 just before it (docs/hardware/gpu.md §2, §6).
     pub(super) fn blend_e1(&self, dither: bool) -> Option<u32> {
         match (self.texture, self.blend) {
-            (None, Some(mode)) => {
-                let blend = gpu::Texpage {
-                    blend: gpu::BlendMode::from_bits(u32::from(mode)),
-                    ..gpu::Texpage::default()
-                };
-                Some(0xE100_0000 | (dither as u32) << 9 | blend.bits())
-            }
+            (None, Some(mode)) => Some(encode::draw_mode(gpu::DrawMode {
+                blend: gpu::BlendMode::from_bits(u32::from(mode)),
+                dither,
+                ..gpu::DrawMode::default()
+            })),
             _ => None,
         }
     }

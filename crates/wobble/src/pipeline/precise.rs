@@ -70,7 +70,6 @@ pub(super) fn draw(
     dither: bool,
     perspective: bool,
 ) {
-    let mut packet = [0u32; 12];
     for &i in order {
         let (Some(f), Some(at)) = (faces.get(i as usize), vertices.get(i as usize)) else {
             continue;
@@ -78,7 +77,7 @@ pub(super) fn draw(
         if let Some(e1) = f.blend_e1(dither) {
             gpu.gp0(e1);
         }
-        let len = f.packet(&mut packet);
+        let packet = f.packet();
         let n = if f.quad { 4 } else { 3 };
         let at = at.map(|v| gpu::precise::PreciseVertex {
             x: v.x,
@@ -86,7 +85,7 @@ pub(super) fn draw(
             inv_z: v.inv_z,
         });
         // The packet and positions are built together here, so their lengths agree.
-        let _ = gpu.draw_polygon_precise(&packet[..len], &at[..n], perspective);
+        let _ = gpu.draw_polygon_precise(&packet, &at[..n], perspective);
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::vram_alloc::{Placement, VramAllocError, VramAllocator};
 use crate::scene::Scene;
+use gpu::encode;
 use gpu::{Gpu, TextureDepth};
 
 /// Place every texture of `scene` in VRAM beside the two display buffers and upload it:
@@ -64,14 +65,8 @@ fn upload(gpu: &mut Gpu, x: u16, y: u16, width: usize, halfwords: &[u16]) {
         return;
     }
     let height = halfwords.len() / width;
-    gpu.gp0_words(&[
-        0xA000_0000,
-        (y as u32) << 16 | x as u32,
-        (height as u32) << 16 | width as u32,
-    ]);
-    for pair in halfwords.chunks(2) {
-        let lo = pair[0] as u32;
-        let hi = pair.get(1).copied().unwrap_or(0) as u32;
-        gpu.gp0(hi << 16 | lo);
+    gpu.gp0_words(&encode::cpu_to_vram(x, y, width as u16, height as u16));
+    for word in encode::pixel_words(halfwords) {
+        gpu.gp0(word);
     }
 }
