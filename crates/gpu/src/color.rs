@@ -151,6 +151,67 @@ pub fn blend_per_channel(mode: BlendMode, b: u16, f: u16) -> u16 {
     out
 }
 
+/// A 4-bit CLUT's 16 entries modulated by one colour and dithered, for each of the 16 cells
+/// of the dither matrix (docs/hardware/gpu.md §6), indexed `[y & 3][x & 3][entry]`. Entries are
+/// coded as [`shaded_clut4`] codes them.
+pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
+
+/// The 16 CLUT entries of a 4-bit texture shaded once for a primitive whose colour `rgb` and
+/// shade table are the same at every pixel (docs/hardware/gpu.md §6): what [`shade_pixel`]
+/// computes per texel (the rasterizer's `shade_pixel`), per entry instead. Raw textures keep
+/// the entry as it is; a shaded entry is coded `1_0000h | colour | bit 15`, a transparent
+/// one 0.
+pub(crate) fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
+    let mut lut = [0u32; 16];
+    for (entry, &t) in lut.iter_mut().zip(clut.iter()) {
+        if t == 0 {
+            continue;
+        }
+        let shaded = if raw {
+            t & 0x7FFF
+        } else {
+            let c5 = |i: i32| PLAIN_TABLE[(i & 511) as usize] as u16;
+            let t = t as i32;
+            pack555(
+                c5(((t & 0x1F) * rgb[0]) >> 4),
+                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
+                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
+            )
+        };
+        *entry = 0x1_0000 | u32::from(shaded | (t & 0x8000));
+    }
+    lut
+}
+
+/// The 16 CLUT entries of a 4-bit texture modulated by one colour `rgb` and dithered, for
+/// each cell of the dither matrix (docs/hardware/gpu.md §6): [`shaded_clut4`] with the cell's
+/// table instead of the undithered one, coded the same way.
+pub(crate) fn dithered_clut4(clut: &[u16; 256], rgb: [u8; 3], out: &mut DitheredCells) {
+    let rgb = rgb.map(i32::from);
+    // Each entry's three modulated channels, (t5 * c8) >> 4, before the dither.
+    let modulated: [[usize; 3]; 16] = core::array::from_fn(|i| {
+        let t = i32::from(clut[i]);
+        [
+            (((t & 0x1F) * rgb[0]) >> 4) as usize & 511,
+            ((((t >> 5) & 0x1F) * rgb[1]) >> 4) as usize & 511,
+            ((((t >> 10) & 0x1F) * rgb[2]) >> 4) as usize & 511,
+        ]
+    });
+    for (row, tables) in out.iter_mut().zip(&DITHER_TABLES) {
+        for (cell, table) in row.iter_mut().zip(tables) {
+            for ((entry, &t), m) in cell.iter_mut().zip(clut.iter()).zip(&modulated) {
+                let c = |i: usize| u16::from(table[i]);
+                let shaded = pack555(c(m[0]), c(m[1]), c(m[2]));
+                *entry = if t == 0 {
+                    0
+                } else {
+                    0x1_0000 | u32::from(shaded | (t & 0x8000))
+                };
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

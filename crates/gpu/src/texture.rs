@@ -2,6 +2,7 @@
 //! (docs/hardware/gpu.md §7).
 
 use crate::VRAM_WIDTH;
+use crate::color::{DitheredCells, dithered_clut4};
 use crate::primitive::Texture;
 use crate::state::{TextureDepth, TextureWindow};
 
@@ -21,11 +22,6 @@ pub struct ClutCache {
     #[cfg_attr(feature = "serde", serde(skip))]
     dithered: DitheredClut4,
 }
-
-/// A 4-bit CLUT's 16 entries modulated by one colour and dithered, for each of the 16 cells
-/// of the dither matrix (docs/hardware/gpu.md §6), indexed `[y & 3][x & 3][entry]`. Entries are
-/// coded as [`crate::rasterizer::shaded_clut4`] codes them.
-pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
 
 /// The cached [`DitheredCells`] and the colour they were shaded with. Colours are kept as
 /// [`color_key`] words, [`NO_COLOR`] for none.
@@ -176,7 +172,7 @@ impl ClutCache {
         };
         d.requested = key;
         if d.color != key && (d.run >= 3 || build()) {
-            crate::rasterizer::dithered_clut4(&self.entries, rgb, &mut d.cells);
+            dithered_clut4(&self.entries, rgb, &mut d.cells);
             d.color = key;
         }
         let cells = (d.color == key).then_some(&d.cells);

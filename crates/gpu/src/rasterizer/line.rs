@@ -1,9 +1,8 @@
 //! Line rasterization (docs/hardware/gpu.md §4): both endpoints drawn, 32.32 positions with a half-pixel
 //! bias, colour stepped in 12-bit fixed point, every pixel tested against the drawing area.
 
-use super::{
-    DrawCount, PixelEnv, TEX_NONE, exceeds_size_limit, shade_pixel, step_away_from_zero, wrap11,
-};
+use super::coverage::exceeds_size_limit;
+use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, step_away_from_zero, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::{Line, Vertex};
 use crate::state::{DrawState, DrawingArea};

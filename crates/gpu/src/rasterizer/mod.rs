@@ -4,6 +4,7 @@
 //! (Gouraud, texture depth, raw texture, blending, dithering, mask check): a flat untextured
 //! opaque triangle runs a loop with no texture, blend, dither or mask code in it.
 
+mod coverage;
 mod line;
 #[cfg(feature = "precise")]
 pub(crate) mod precise;
@@ -11,11 +12,14 @@ mod rectangle;
 mod span;
 mod triangle;
 
-use crate::color::{DITHER_TABLES, PLAIN_TABLE, ShadeTable, blend, pack555};
+use crate::color::{DitheredCells, ShadeTable, blend, pack555, shaded_clut4};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
-use crate::state::{BlendMode, DrawState, DrawingArea, TextureDepth};
-use crate::texture::{ClutCache, DitheredCells, Sampler};
+use crate::state::{BlendMode, DrawState, TextureDepth};
+use crate::texture::{ClutCache, Sampler};
 use crate::{VRAM_LEN, Vram};
+pub use coverage::{
+    Coverage, DropReason, PixelBounds, classify_line, classify_rectangle, classify_triangle,
+};
 
 /// What a primitive drew after clipping, counted once per span (never per pixel), for the
 /// drawing-time model (docs/emulator.md, "Drawing time, FIFO and DMA").
@@ -95,7 +99,7 @@ pub(crate) struct PixelEnv<'a> {
     /// Filled only when a span routine reads it (see [`shaded_clut4`]).
     pub lut: [u32; 16],
     /// For a dithered 4-bit texture under one colour, its CLUT entries shaded in every
-    /// dither cell ([`dithered_clut4`]), when the CLUT cache holds them or the primitive is
+    /// dither cell ([`crate::color::dithered_clut4`]), when the CLUT cache holds them or the primitive is
     /// large enough to pay for shading them; `None` otherwise.
     pub dithered: Option<&'a DitheredCells>,
     /// For a wide opaque flat primitive, a VRAM line's worth of its pixel value: long spans
@@ -104,66 +108,12 @@ pub(crate) struct PixelEnv<'a> {
     pub line: &'a [u16],
 }
 
-/// The 16 CLUT entries of a 4-bit texture shaded once for a primitive whose colour `rgb` and
-/// shade table are the same at every pixel (docs/hardware/gpu.md §6): what [`shade_pixel`]
-/// computes per texel, per entry instead. Raw textures keep the entry as it is.
-fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
-    let mut lut = [0u32; 16];
-    for (entry, &t) in lut.iter_mut().zip(clut.iter()) {
-        if t == 0 {
-            continue;
-        }
-        let shaded = if raw {
-            t & 0x7FFF
-        } else {
-            let c5 = |i: i32| PLAIN_TABLE[(i & 511) as usize] as u16;
-            let t = t as i32;
-            pack555(
-                c5(((t & 0x1F) * rgb[0]) >> 4),
-                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
-                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
-            )
-        };
-        *entry = 0x1_0000 | u32::from(shaded | (t & 0x8000));
-    }
-    lut
-}
-
-/// The 16 CLUT entries of a 4-bit texture modulated by one colour `rgb` and dithered, for
-/// each cell of the dither matrix (docs/hardware/gpu.md §6): [`shaded_clut4`] with the cell's
-/// table instead of the undithered one, coded the same way.
-pub(crate) fn dithered_clut4(clut: &[u16; 256], rgb: [u8; 3], out: &mut DitheredCells) {
-    let rgb = rgb.map(i32::from);
-    // Each entry's three modulated channels, (t5 * c8) >> 4, before the dither.
-    let modulated: [[usize; 3]; 16] = core::array::from_fn(|i| {
-        let t = i32::from(clut[i]);
-        [
-            (((t & 0x1F) * rgb[0]) >> 4) as usize & 511,
-            ((((t >> 5) & 0x1F) * rgb[1]) >> 4) as usize & 511,
-            ((((t >> 10) & 0x1F) * rgb[2]) >> 4) as usize & 511,
-        ]
-    });
-    for (row, tables) in out.iter_mut().zip(&DITHER_TABLES) {
-        for (cell, table) in row.iter_mut().zip(tables) {
-            for ((entry, &t), m) in cell.iter_mut().zip(clut.iter()).zip(&modulated) {
-                let c = |i: usize| u16::from(table[i]);
-                let shaded = pack555(c(m[0]), c(m[1]), c(m[2]));
-                *entry = if t == 0 {
-                    0
-                } else {
-                    0x1_0000 | u32::from(shaded | (t & 0x8000))
-                };
-            }
-        }
-    }
-}
-
 /// Shade and write one pixel (docs/hardware/gpu.md §6): texel fetch and transparency, modulation or raw
 /// texel, dithering, blending (per texel bit 15 when textured), mask check and set.
 /// `rgb` holds 8-bit channels; `shade` is the dither cell's table for this pixel (or the
 /// undithered one). With `lut` (4-bit textures only; a constant in every span routine, so
 /// the branch on it is folded away) the texel's shaded colour comes from that table of
-/// shaded CLUT entries ([`shaded_clut4`], [`dithered_clut4`]) and `rgb` and `shade` are not
+/// shaded CLUT entries ([`shaded_clut4`], [`crate::color::dithered_clut4`]) and `rgb` and `shade` are not
 /// read.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
@@ -224,7 +174,7 @@ pub(crate) fn shade_pixel<
 }
 
 /// Write one pixel of a primitive whose texel colours come shaded from a table
-/// ([`shaded_clut4`], [`dithered_clut4`]): `e` is the texel's entry, 0 for a transparent
+/// ([`shaded_clut4`], [`crate::color::dithered_clut4`]): `e` is the texel's entry, 0 for a transparent
 /// texel (the pixel is left alone), else `10000h | colour | texel bit 15`; blending per texel
 /// bit 15 with `mode`, mask check, and `mask_or` as [`shade_pixel`] does (docs/hardware/gpu.md
 /// §6).
@@ -468,152 +418,6 @@ impl Rows {
 #[inline(always)]
 pub(crate) const fn wrap11(v: i32) -> i32 {
     (v << 21) >> 21
-}
-
-/// Why the rasterizer draws nothing of a primitive (docs/hardware/gpu.md §3-§5).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum DropReason {
-    /// A vertex pair is 1024 or more apart in X or 512 or more in Y, after the drawing
-    /// offset and the 11-bit wrap: the whole triangle or line is dropped (docs/hardware/gpu.md §3.2, §4).
-    SizeLimit,
-    /// A triangle whose vertices are collinear (the gradient denominator is 0, docs/hardware/gpu.md §3.6),
-    /// or a rectangle of width or height 0 (docs/hardware/gpu.md §5).
-    ZeroArea,
-    /// The primitive's bounding box lies entirely outside the drawing area (E3/E4), so no
-    /// pixel survives the clip (docs/hardware/gpu.md §3.5, §4, §5).
-    Clipped,
-}
-
-/// An inclusive VRAM rectangle: every pixel a primitive can write lies inside it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct PixelBounds {
-    /// Leftmost column.
-    pub left: u16,
-    /// Top line.
-    pub top: u16,
-    /// Rightmost column (inclusive).
-    pub right: u16,
-    /// Bottom line (inclusive).
-    pub bottom: u16,
-}
-
-impl PixelBounds {
-    /// Width in pixels.
-    pub fn width(&self) -> usize {
-        usize::from(self.right.saturating_sub(self.left)) + 1
-    }
-    /// Height in lines.
-    pub fn height(&self) -> usize {
-        usize::from(self.bottom.saturating_sub(self.top)) + 1
-    }
-}
-
-/// What the rasterizer does with a primitive, decided before any pixel is drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum Coverage {
-    /// Rasterized; no pixel outside these bounds is written (a thin triangle may still
-    /// cover no pixel).
-    Drawn(PixelBounds),
-    /// Nothing drawn, for this reason.
-    Dropped(DropReason),
-}
-
-impl Coverage {
-    /// The drop reason, if the primitive is not drawn.
-    pub fn dropped(&self) -> Option<DropReason> {
-        match self {
-            Coverage::Drawn(_) => None,
-            Coverage::Dropped(r) => Some(*r),
-        }
-    }
-}
-
-/// The size-drop test on wrapped vertices (docs/hardware/gpu.md §3.2, §4).
-#[inline(always)]
-fn exceeds_size_limit(a: (i32, i32), b: (i32, i32)) -> bool {
-    (a.0 - b.0).abs() >= 1024 || (a.1 - b.1).abs() >= 512
-}
-
-/// Clip an inclusive box of wrapped coordinates to the drawing area.
-#[inline(always)]
-fn clip_box(x0: i32, x1: i32, y0: i32, y1: i32, area: &DrawingArea) -> Coverage {
-    let left = x0.max(area.left as i32);
-    let right = x1.min(area.right as i32);
-    let top = y0.max(area.top as i32);
-    let bottom = y1.min(area.bottom as i32);
-    if left > right || top > bottom {
-        return Coverage::Dropped(DropReason::Clipped);
-    }
-    // The area is at most 1023x511, so the clipped box fits u16.
-    Coverage::Drawn(PixelBounds {
-        left: left as u16,
-        top: top as u16,
-        right: right as u16,
-        bottom: bottom as u16,
-    })
-}
-
-/// The triangle tests on wrapped vertices: size drop, zero area, drawing-area clip. Rows
-/// `[min y, max y)` and columns `[min x, max x)` bound the spans (docs/hardware/gpu.md §3.4-§3.5), so
-/// the inclusive box of the vertices contains every drawn pixel.
-#[inline(always)]
-pub(crate) fn triangle_coverage(p: [(i32, i32); 3], area: &DrawingArea) -> Coverage {
-    let [a, b, c] = p;
-    if exceeds_size_limit(a, b) || exceeds_size_limit(b, c) || exceeds_size_limit(a, c) {
-        return Coverage::Dropped(DropReason::SizeLimit);
-    }
-    // Twice the signed area: the gradient denominator up to sign (docs/hardware/gpu.md §3.6).
-    let cross = (b.0 - a.0) as i64 * (c.1 - b.1) as i64 - (c.0 - b.0) as i64 * (b.1 - a.1) as i64;
-    if cross == 0 {
-        return Coverage::Dropped(DropReason::ZeroArea);
-    }
-    clip_box(
-        a.0.min(b.0).min(c.0),
-        a.0.max(b.0).max(c.0),
-        a.1.min(b.1).min(c.1),
-        a.1.max(b.1).max(c.1),
-        area,
-    )
-}
-
-/// The line tests on wrapped endpoints: size drop, drawing-area clip (docs/hardware/gpu.md §4). Points
-/// lie between the endpoints; negative positions wrap to 1024 and above (`& 2047`), past
-/// any drawing area.
-#[inline(always)]
-pub(crate) fn line_coverage(p: [(i32, i32); 2], area: &DrawingArea) -> Coverage {
-    let [a, b] = p;
-    if exceeds_size_limit(a, b) {
-        return Coverage::Dropped(DropReason::SizeLimit);
-    }
-    clip_box(a.0.min(b.0), a.0.max(b.0), a.1.min(b.1), a.1.max(b.1), area)
-}
-
-/// What the rasterizer does with a triangle under a drawing area (docs/hardware/gpu.md §3): the same
-/// tests [`draw_triangle`] applies before drawing.
-pub fn classify_triangle(tri: &Triangle, area: &DrawingArea) -> Coverage {
-    let v = tri.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
-    triangle_coverage(v, area)
-}
-
-/// What the rasterizer does with a line segment under a drawing area (docs/hardware/gpu.md §4): the
-/// same tests [`draw_line`] applies before drawing.
-pub fn classify_line(line: &Line, area: &DrawingArea) -> Coverage {
-    let v = line.vertices.map(|p| (wrap11(p.x), wrap11(p.y)));
-    line_coverage(v, area)
-}
-
-/// What the rasterizer does with a rectangle under a drawing area (docs/hardware/gpu.md §5): the same
-/// clip [`draw_rectangle`] computes.
-pub fn classify_rectangle(rect: &Rectangle, area: &DrawingArea) -> Coverage {
-    if rect.width == 0 || rect.height == 0 {
-        return Coverage::Dropped(DropReason::ZeroArea);
-    }
-    match rectangle::clip(rect, area) {
-        Some((x_start, x_end, y_start, y_end)) => {
-            clip_box(x_start, x_end - 1, y_start, y_end - 1, area)
-        }
-        None => Coverage::Dropped(DropReason::Clipped),
-    }
 }
 
 /// The CLUT in a line's pixel environment: lines are never textured, so it is never read.

@@ -2,9 +2,8 @@
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
 
-use super::{
-    Coverage, DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, triangle_coverage, wrap11,
-};
+use super::coverage::{Coverage, triangle_coverage};
+use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::BlendMode;
@@ -722,7 +721,7 @@ pub(super) fn draw_inline<
 /// Shade `[x_start, x_end)` of line `y` (VRAM row offset `row`) pixel by pixel from the
 /// attributes `acc` at `x_start`, stepped by `step`. `cells` holds the shaded CLUT entries of
 /// this line's four dither cells for a dithered 4-bit texture under one colour
-/// ([`super::dithered_clut4`]); an undithered one reads `env.lut`.
+/// ([`crate::color::dithered_clut4`]); an undithered one reads `env.lut`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn pixels<
@@ -786,8 +785,8 @@ static NO_CELLS: [[u32; 16]; 4] = [[0; 16]; 4];
 /// Shade `[x_start, x_end)` of the VRAM line at `row` for a 4-bit texture under one colour,
 /// the identity window and a page inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
 /// its texel's CLUT entry read from a shaded table, that of its dither cell among this line's
-/// four (`CELLS`, [`super::dithered_clut4`]) or the one undithered table
-/// ([`super::shaded_clut4`]); the texel index is read from the halfword
+/// four (`CELLS`, [`crate::color::dithered_clut4`]) or the one undithered table
+/// ([`crate::color::shaded_clut4`]); the texel index is read from the halfword
 /// `page + v * 1024 + u / 4`. U and V start at `uv` and step by `duv` (8.24).
 #[inline(always)]
 fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
