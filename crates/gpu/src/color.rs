@@ -157,10 +157,9 @@ pub fn blend_per_channel(mode: BlendMode, b: u16, f: u16) -> u16 {
 pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
 
 /// The 16 CLUT entries of a 4-bit texture shaded once for a primitive whose colour `rgb` and
-/// shade table are the same at every pixel (docs/hardware/gpu.md §6): what [`shade_pixel`]
-/// computes per texel (the rasterizer's `shade_pixel`), per entry instead. Raw textures keep
-/// the entry as it is; a shaded entry is coded `1_0000h | colour | bit 15`, a transparent
-/// one 0.
+/// shade table are the same at every pixel (docs/hardware/gpu.md §6): what the rasterizer's
+/// `shade_pixel` computes per texel, per entry instead. Raw textures keep the entry as it
+/// is; a shaded entry is coded `1_0000h | colour | bit 15`, a transparent one 0.
 pub(crate) fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
     let mut lut = [0u32; 16];
     for (entry, &t) in lut.iter_mut().zip(clut.iter()) {

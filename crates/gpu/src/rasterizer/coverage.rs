@@ -2,6 +2,10 @@
 //! zero-area test and the drawing-area clip, and the bounds of what it draws
 //! (docs/hardware/gpu.md §3.2, §3.5, §4, §5). The draw routines and `decode` run the same
 //! tests.
+//!
+//! Why this shape: the tests run once per primitive on wrapped integer corners, before any
+//! set-up, so a dropped primitive costs no edge or gradient work; they are apart from the
+//! draw routines so that `decode` reports exactly their verdicts.
 
 use super::{rectangle, wrap11};
 use crate::primitive::{Line, Rectangle, Triangle};

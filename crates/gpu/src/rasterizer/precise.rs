@@ -8,6 +8,10 @@
 //! pixel decides, with a top-left rule for samples exactly on an edge. Attributes come from
 //! barycentric weights (affine) or weights divided by depth (perspective), rounded like the
 //! hardware's +0.5 bias. Integer maths throughout (i128 for the weighted sums).
+//!
+//! Why this shape: not a hot path. A plain per-pixel loop, about 5x the hardware path's
+//! frame time on the default scene (docs/gpu.md, "The non-hardware precise path"), which is
+//! never slowed by it.
 
 use super::{PixelEnv, TEX_NONE, shade_pixel};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};

@@ -1,6 +1,10 @@
 //! Rectangle (sprite) rasterization (docs/hardware/gpu.md §5): no dithering, U/V counted per pixel and
 //! wrapped at 256 (decremented when flipped, starting from `u0 | 1` under the X flip), clipped
 //! to the drawing area.
+//!
+//! Why this shape: one routine per feature set, as for triangles, with a 4-bit texture's CLUT
+//! shaded once per rectangle: 16x16 4-bit sprites take about 7,560 instructions each, 2.4x
+//! fewer than Mednafen's (docs/performance.md, "GPU primitive classes").
 
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;

@@ -1,10 +1,18 @@
 //! Triangle rasterization (docs/hardware/gpu.md §3): core vertex, Y sort, 32.32 edge walking with the
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
+//!
+//! Why this shape: the rows of a part are walked by a routine of their own, not inlined into
+//! the set-up (`FlatRows`, `PartRows`), so that the pixel loops keep their registers: with
+//! its rows inlined, the raw 15-bit class took from 8,321 to 8,845 instructions a triangle
+//! as unrelated set-up code changed (a VRAM pointer reloaded at every pixel); out of line,
+//! 8,392 whatever the set-up holds. Flat rows from the positions alone took flat triangles
+//! from 3,204 to 1,536 instructions; the rest of the history is in docs/performance.md
+//! ("What each change bought").
 
 use super::coverage::{Coverage, triangle_coverage};
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, wrap11};
-use crate::color::{DITHER_TABLES, PLAIN_TABLE};
+use crate::color::{DITHER_TABLES, DitheredCells, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::BlendMode;
 use crate::state::DrawState;
@@ -251,10 +259,7 @@ pub(super) fn draw_flat(
         p[0].0.max(p[1].0).max(p[2].0),
     );
     let inside = min_x >= clip.0 && max_x <= clip.1;
-    let stride = match rows {
-        super::Rows::All => 1,
-        super::Rows::SkipParity(_) => 2,
-    };
+    let stride = rows.stride();
     for part in setup.parts {
         let first = rows.first(part.top.max(clip_top));
         let last = part.bottom.min(clip_bottom);
@@ -347,12 +352,13 @@ impl FlatRows {
     }
 }
 
-/// The rows of one part of a triangle drawn in eight-pixel groups (see [`span::draw`]): from
-/// row `y` to `last` (exclusive) every `stride` rows, the span `[l >> 32, r >> 32)` at each
-/// clipped to the columns `clip`, the edges stepping by `dl` and `dr`; `attr` holds the
-/// attributes at column 0 of row `y` and steps by `attr_step` per row walked
-/// (docs/hardware/gpu.md §3.4-§3.6).
-struct GroupRows {
+/// The rows of one part of a triangle, walked by a routine of their own: from row `y` to
+/// `last` (exclusive) every `stride` rows, the span `[l >> 32, r >> 32)` at each clipped to
+/// the columns `clip`, the edges stepping by `dl` and `dr`; `attr` holds the attributes at
+/// column 0 of row `y` and steps by `attr_step` per row walked (docs/hardware/gpu.md
+/// §3.4-§3.6). The routines are not inlined into the triangle set-up, so that their pixel
+/// loops keep their registers whatever the set-up around the call holds.
+struct PartRows {
     y: i32,
     last: i32,
     stride: i32,
@@ -365,9 +371,110 @@ struct GroupRows {
     attr_step: [u32; 5],
 }
 
-impl GroupRows {
-    /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
-    /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+impl PartRows {
+    /// The rows `first..last` (every `stride`-th) of `part`, the attributes `attrs` at
+    /// column 0 of each.
+    #[inline(always)]
+    fn new(
+        part: &Part,
+        (first, last, stride): (i32, i32, i32),
+        attrs: &Attributes,
+        clip: (i32, i32),
+    ) -> Self {
+        let Attributes { cv, origin, grads } = attrs;
+        // Attribute `i` at column 0 of row `first`, 8.24 with 32-bit wrap (§3.6).
+        let dy = first.wrapping_sub(cv.y) as u32;
+        let dx = cv.x.wrapping_neg() as u32;
+        PartRows {
+            y: first,
+            last,
+            stride,
+            l: part.left.at(first),
+            r: part.right.at(first),
+            dl: part.left.step * stride as i64,
+            dr: part.right.step * stride as i64,
+            clip,
+            attr: core::array::from_fn(|i| {
+                origin[i]
+                    .wrapping_add(grads[i].0.wrapping_mul(dx))
+                    .wrapping_add(grads[i].1.wrapping_mul(dy))
+            }),
+            attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
+        }
+    }
+
+    /// [`PartRows::draw`] with its clip and page variants chosen for the sorted vertices
+    /// `v`; returns the pixels drawn.
+    #[inline(always)]
+    fn groups<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        v: &[Vtx; 3],
+        step: [u32; 5],
+        flat: [i32; 3],
+        env: &PixelEnv,
+    ) -> u32 {
+        // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
+        // inside the area's columns need no clip.
+        let (a, b, c) = (v[0], v[1], v[2]);
+        let (left, right) = self.clip;
+        let inside = a.x.min(b.x).min(c.x) >= left && a.x.max(b.x).max(c.x) <= right;
+        let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
+        match (inside, plain) {
+            (true, false) => self.draw::<TEX, GOURAUD, DITHER, false, false>(vram, step, flat, env),
+            (false, false) => self.draw::<TEX, GOURAUD, DITHER, true, false>(vram, step, flat, env),
+            (true, true) => self.draw::<TEX, GOURAUD, DITHER, false, true>(vram, step, flat, env),
+            (false, true) => self.draw::<TEX, GOURAUD, DITHER, true, true>(vram, step, flat, env),
+        }
+    }
+
+    /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
+    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel;
+    /// returns what was drawn.
+    #[inline(never)]
+    fn raw15<const BLEND: bool, const MASK_CHECK: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        duv: (u32, u32),
+        page: usize,
+        mask: (u16, BlendMode),
+    ) -> DrawCount {
+        let Self {
+            mut y,
+            last,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            mut attr,
+            attr_step,
+        } = self;
+        let mut drawn = DrawCount::default();
+        while y < last {
+            let x_start = ((l >> 32) as i32).max(clip.0);
+            let x_end = ((r >> 32) as i32).min(clip.1);
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
+                let uv = (at(3, duv.0), at(4, duv.1));
+                raw15_span::<BLEND, MASK_CHECK>(vram, (row, x_start, x_end), uv, duv, page, mask);
+            }
+            for (a, s) in attr.iter_mut().zip(attr_step) {
+                *a = a.wrapping_add(s);
+            }
+            y += stride;
+        }
+        drawn
+    }
+
+    /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
+    /// `step` per pixel; returns the pixels drawn. Textured spans under
+    /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
     fn draw<
         const TEX: u8,
@@ -474,7 +581,12 @@ pub(super) fn draw<
 }
 
 /// [`draw`], inlined into a caller that builds the triangle itself, so that its vertices
-/// need not pass through memory.
+/// need not pass through memory. Its steps: a flat untextured opaque triangle goes to
+/// [`draw_flat`]; otherwise the vertices wrapped with the attributes the pipeline
+/// interpolates ([`wrapped_vertices`]), the coverage tests, core vertex, sort and edges
+/// ([`setup`]), the attribute gradients ([`Attributes`]) and the span routine
+/// ([`SpanPlan`]); then each part's rows in eight-pixel groups ([`PartRows::groups`]), as a
+/// raw 15-bit page ([`PartRows::raw15`]) or span by span ([`span_pixels`]).
 #[inline(always)]
 pub(super) fn draw_inline<
     const TEX: u8,
@@ -496,10 +608,87 @@ pub(super) fn draw_inline<
         return draw_flat(vram, state, p, color, env.line, rows);
     }
     let mut drawn = DrawCount::default();
-    // Attributes the pipeline does not interpolate are 0, so that the Y sort does not
-    // carry them.
+    let verts = wrapped_vertices::<TEX, GOURAUD>(tri);
+    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
+    let corners = verts.map(|v| (v.x, v.y));
+    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
+        return drawn;
+    }
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
+    let attrs = Attributes::new::<TEX, GOURAUD>(&v, setup.core);
+    let flat = tri.vertices[0].color.map(|c| c as i32);
+    let area = state.area;
+    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
+    let clip = (area.left as i32, area.right as i32 + 1);
+    // Per-triangle copies, so the row and pixel loops keep them in registers.
+    let env = *env;
+    let step = attrs.grads.map(|g| g.0);
+    let plan = SpanPlan::new::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+        &env,
+        &v,
+        (clip_top, clip_bottom, clip.0, clip.1),
+    );
+    let stride = rows.stride();
+    for part in setup.parts {
+        let first = rows.first(part.top.max(clip_top));
+        let last = part.bottom.min(clip_bottom);
+        if first >= last {
+            continue;
+        }
+        drawn.rows += rows.count(first, last);
+        if plan.groups || plan.raw15_page.is_some() {
+            let walk = PartRows::new(&part, (first, last, stride), &attrs, clip);
+            if let Some(page) = plan.raw15_page {
+                let mask = (env.mask_or, env.blend);
+                let d = walk.raw15::<BLEND, MASK_CHECK>(vram, (step[3], step[4]), page, mask);
+                (drawn.pixels, drawn.pairs) = (drawn.pixels + d.pixels, drawn.pairs + d.pairs);
+            } else {
+                drawn.pixels += walk.groups::<TEX, GOURAUD, DITHER>(vram, &v, step, flat, &env);
+            }
+            continue;
+        }
+        let (mut l, mut r) = (part.left.at(first), part.right.at(first));
+        let (dl, dr) = (
+            part.left.step * stride as i64,
+            part.right.step * stride as i64,
+        );
+        let mut y = first;
+        while y < last {
+            let x_start = ((l >> 32) as i32).max(clip.0);
+            let x_end = ((r >> 32) as i32).min(clip.1);
+            l += dl;
+            r += dr;
+            if x_start < x_end {
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
+                let acc = attrs.at::<TEX, GOURAUD>(x_start, y);
+                let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
+                span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+                    vram,
+                    span,
+                    (acc, step),
+                    flat,
+                    &plan,
+                    &env,
+                );
+            }
+            y += stride;
+        }
+    }
+    drawn
+}
+
+/// Whether the pipeline interpolates attribute `i` (0-2 colour, 3-4 U and V).
+#[inline(always)]
+const fn used<const TEX: u8, const GOURAUD: bool>(i: usize) -> bool {
+    (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3)
+}
+
+/// The triangle's vertices wrapped to 11 bits (docs/hardware/gpu.md §3.5), with the
+/// attributes the pipeline does not interpolate 0, so that the Y sort does not carry them.
+#[inline(always)]
+fn wrapped_vertices<const TEX: u8, const GOURAUD: bool>(tri: &Triangle) -> [Vtx; 3] {
     let (shaded, textured) = (GOURAUD, TEX != TEX_NONE);
-    let verts = tri.vertices.map(|p| Vtx {
+    tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
@@ -509,213 +698,198 @@ pub(super) fn draw_inline<
             if textured { p.u as i32 } else { 0 },
             if textured { p.v as i32 } else { 0 },
         ],
-    });
-    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
-    let corners = verts.map(|v| (v.x, v.y));
-    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
-        return drawn;
-    }
-    let (v, setup) = setup(verts, |v| (v.x, v.y));
-    let (a, b, c) = (v[0], v[1], v[2]);
-    // A select, not an index: the sorted vertices then stay in registers.
-    let cv = match setup.core {
-        0 => a,
-        1 => b,
-        _ => c,
-    };
-    let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
-    // Attribute set-up: 0-2 colour, 3-4 UV.
-    let mut grads = [(0u32, 0u32); 5];
-    let mut origin = [0u32; 5];
-    let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
-    let divisor = Divisor::new(den);
-    for i in 0..5 {
-        if used(i) {
-            grads[i] = gradient(&v, i, divisor);
-        }
-        origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
-    }
-    let flat = tri.vertices[0].color.map(|c| c as i32);
-    let area = state.area;
-    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
-    let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
-    // Per-triangle copies, so the row and pixel loops keep them in registers.
-    let env = *env;
-    let step = grads.map(|g| g.0);
-    // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
-    // time; a 4-bit texture under one colour keeps its shaded CLUT instead (undithered, or
-    // dithered with the table of every dither cell, `PixelEnv::dithered`, at hand).
-    // Raw textures need no colour maths and stay pixel by pixel, as does a primitive that
-    // may read texels it has itself written (see `span::texture_clear_of`).
-    let dithered = if TEX == 1 && !GOURAUD && DITHER {
-        env.dithered
-    } else {
-        None
-    };
-    let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
-    let groups = !BLEND
-        && !MASK_CHECK
-        && !RAW
-        && (GOURAUD || TEX != TEX_NONE)
-        && !shaded_clut
-        && (TEX == TEX_NONE || {
-            let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
-            span::texture_clear_of(
-                &env.sampler,
-                TEX,
-                (xs.0.max(clip_left), xs.1.min(clip_right)),
-                (a.y.max(clip_top), c.y.min(clip_bottom)),
-            )
-        });
-    // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or raw
-    // 15-bit span reads texel (u, v) from the halfword at its index plus v * 1024 + u / 4 or
-    // + u, and eight-pixel groups compute their eight texel addresses together.
-    let plain_page = if TEX == 1 {
-        span::plain_page(&env.sampler, TEX)
-    } else {
-        None
-    };
-    let raw15_page = if TEX == 3 && RAW {
-        span::plain_page(&env.sampler, TEX)
-    } else {
-        None
-    };
+    })
+}
 
-    let stride = match rows {
-        super::Rows::All => 1,
-        super::Rows::SkipParity(_) => 2,
-    };
-    for Part {
-        top,
-        bottom,
-        left,
-        right,
-    } in setup.parts
-    {
-        let first = rows.first(top.max(clip_top));
-        let last = bottom.min(clip_bottom);
-        if first >= last {
-            continue;
-        }
-        drawn.rows += rows.count(first, last);
-        let (mut l, mut r) = (left.at(first), right.at(first));
-        let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
-        if groups {
-            // Attribute `i` at column 0 of row `first`, 8.24 with 32-bit wrap (§3.6).
-            let dy = first.wrapping_sub(cv.y) as u32;
-            let dx = cv.x.wrapping_neg() as u32;
-            let walk = GroupRows {
-                y: first,
-                last,
-                stride,
-                l,
-                r,
-                dl,
-                dr,
-                clip: (clip_left, clip_right),
-                attr: core::array::from_fn(|i| {
-                    origin[i]
-                        .wrapping_add(grads[i].0.wrapping_mul(dx))
-                        .wrapping_add(grads[i].1.wrapping_mul(dy))
-                }),
-                attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
-            };
-            // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
-            // inside the area's columns need no clip.
-            let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
-            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
-            drawn.pixels += match (inside, plain) {
-                (true, false) => {
-                    walk.draw::<TEX, GOURAUD, DITHER, false, false>(vram, step, flat, &env)
-                }
-                (false, false) => {
-                    walk.draw::<TEX, GOURAUD, DITHER, true, false>(vram, step, flat, &env)
-                }
-                (true, true) => {
-                    walk.draw::<TEX, GOURAUD, DITHER, false, true>(vram, step, flat, &env)
-                }
-                (false, true) => {
-                    walk.draw::<TEX, GOURAUD, DITHER, true, true>(vram, step, flat, &env)
-                }
-            };
-            continue;
-        }
-        let mut y = first;
-        while y < last {
-            let x_start = ((l >> 32) as i32).max(clip_left);
-            let x_end = ((r >> 32) as i32).min(clip_right);
-            l += dl;
-            r += dr;
-            if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let row = ((y & 511) as usize) * VRAM_WIDTH;
-                {
-                    let dx = x_start.wrapping_sub(cv.x) as u32;
-                    let dy = y.wrapping_sub(cv.y) as u32;
-                    let mut acc = [0u32; 5];
-                    for i in 0..5 {
-                        if used(i) {
-                            acc[i] = origin[i]
-                                .wrapping_add(grads[i].0.wrapping_mul(dx))
-                                .wrapping_add(grads[i].1.wrapping_mul(dy));
-                        }
-                    }
-                    let span = (row, y, x_start, x_end);
-                    if let Some(page) = raw15_page {
-                        raw15_span::<BLEND, MASK_CHECK>(
-                            vram,
-                            (row, x_start, x_end),
-                            (acc[3], acc[4]),
-                            (step[3], step[4]),
-                            page,
-                            (env.mask_or, env.blend),
-                        );
-                        y += stride;
-                        continue;
-                    }
-                    // One copy of the pixel loop per table kind, chosen per span.
-                    match (dithered, plain_page) {
-                        (Some(cells), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true>(
-                            vram,
-                            (row, x_start, x_end),
-                            (acc[3], acc[4]),
-                            (step[3], step[4]),
-                            page,
-                            (&cells[(y & 3) as usize], &env.lut),
-                            (env.mask_or, env.blend),
-                        ),
-                        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
-                            clut4_span::<BLEND, MASK_CHECK, false>(
-                                vram,
-                                (row, x_start, x_end),
-                                (acc[3], acc[4]),
-                                (step[3], step[4]),
-                                page,
-                                (&NO_CELLS, &env.lut),
-                                (env.mask_or, env.blend),
-                            )
-                        }
-                        (Some(cells), None) => {
-                            pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-                                vram,
-                                span,
-                                acc,
-                                step,
-                                flat,
-                                &env,
-                                Some(&cells[(y & 3) as usize]),
-                            )
-                        }
-                        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-                            vram, span, acc, step, flat, &env, None,
-                        ),
-                    }
-                }
+/// A triangle's attributes (0-2 colour, 3-4 U and V): the core vertex, their 8.24 values
+/// there and their gradients per column and per row (docs/hardware/gpu.md §3.6).
+struct Attributes {
+    cv: Vtx,
+    origin: [u32; 5],
+    /// (d/dx, d/dy) of each attribute; 0 for those not interpolated.
+    grads: [(u32, u32); 5],
+}
+
+impl Attributes {
+    /// The set-up of the sorted vertices `v` with the core vertex at `core`.
+    #[inline(always)]
+    fn new<const TEX: u8, const GOURAUD: bool>(v: &[Vtx; 3], core: usize) -> Self {
+        let (a, b, c) = (v[0], v[1], v[2]);
+        // A select, not an index: the sorted vertices then stay in registers.
+        let cv = match core {
+            0 => a,
+            1 => b,
+            _ => c,
+        };
+        let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
+        let mut grads = [(0u32, 0u32); 5];
+        let mut origin = [0u32; 5];
+        let divisor = Divisor::new(den);
+        for i in 0..5 {
+            if used::<TEX, GOURAUD>(i) {
+                grads[i] = gradient(v, i, divisor);
             }
-            y += stride;
+            origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
+        }
+        Self { cv, origin, grads }
+    }
+
+    /// The attributes the pipeline interpolates at pixel (`x`, `y`), 8.24 with 32-bit
+    /// wrap; the others 0.
+    #[inline(always)]
+    fn at<const TEX: u8, const GOURAUD: bool>(&self, x: i32, y: i32) -> [u32; 5] {
+        let dx = x.wrapping_sub(self.cv.x) as u32;
+        let dy = y.wrapping_sub(self.cv.y) as u32;
+        let mut acc = [0u32; 5];
+        for (i, a) in acc.iter_mut().enumerate() {
+            if used::<TEX, GOURAUD>(i) {
+                *a = self.origin[i]
+                    .wrapping_add(self.grads[i].0.wrapping_mul(dx))
+                    .wrapping_add(self.grads[i].1.wrapping_mul(dy));
+            }
+        }
+        acc
+    }
+}
+
+/// How a triangle's spans are drawn, chosen once per triangle.
+struct SpanPlan<'a> {
+    /// In eight-pixel groups ([`PartRows::groups`]).
+    groups: bool,
+    /// A flat-modulated dithered 4-bit texture's CLUT shaded for every dither cell.
+    dithered: Option<&'a DitheredCells>,
+    /// A 4-bit page the window and VRAM wraps leave alone (`span::plain_page`).
+    plain_page: Option<usize>,
+    /// A raw 15-bit page the window and VRAM wraps leave alone.
+    raw15_page: Option<usize>,
+}
+
+impl<'a> SpanPlan<'a> {
+    /// The plan for the sorted vertices `v` clipped to rows `top..bottom` and columns
+    /// `left..right`, under the pipeline of the const parameters.
+    #[inline(always)]
+    fn new<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const RAW: bool,
+        const BLEND: bool,
+        const DITHER: bool,
+        const MASK_CHECK: bool,
+    >(
+        env: &PixelEnv<'a>,
+        v: &[Vtx; 3],
+        (top, bottom, left, right): (i32, i32, i32, i32),
+    ) -> Self {
+        let (a, b, c) = (v[0], v[1], v[2]);
+        // Opaque, unmasked spans whose pixels each need their own colour or texel go eight
+        // at a time; a 4-bit texture under one colour keeps its shaded CLUT instead
+        // (undithered, or dithered with the table of every dither cell,
+        // `PixelEnv::dithered`, at hand). Raw textures need no colour maths and stay pixel by
+        // pixel, as does a primitive that may read texels it has itself written (see
+        // `span::texture_clear_of`).
+        let dithered = if TEX == 1 && !GOURAUD && DITHER {
+            env.dithered
+        } else {
+            None
+        };
+        let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
+        let groups = !BLEND
+            && !MASK_CHECK
+            && !RAW
+            && (GOURAUD || TEX != TEX_NONE)
+            && !shaded_clut
+            && (TEX == TEX_NONE || {
+                let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
+                span::texture_clear_of(
+                    &env.sampler,
+                    TEX,
+                    (xs.0.max(left), xs.1.min(right)),
+                    (a.y.max(top), c.y.min(bottom)),
+                )
+            });
+        // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or
+        // raw 15-bit span reads texel (u, v) from the halfword at its index plus
+        // v * 1024 + u / 4 or + u, and eight-pixel groups compute their eight texel
+        // addresses together.
+        let plain_page = if TEX == 1 {
+            span::plain_page(&env.sampler, TEX)
+        } else {
+            None
+        };
+        let raw15_page = if TEX == 3 && RAW {
+            span::plain_page(&env.sampler, TEX)
+        } else {
+            None
+        };
+        Self {
+            groups,
+            dithered,
+            plain_page,
+            raw15_page,
         }
     }
-    drawn
+}
+
+/// The span `[x_start, x_end)` of line `y` (VRAM row offset `row`), its attributes at
+/// `x_start` and their steps `(acc, step)`, with one copy of the pixel loop per table kind,
+/// chosen per span by `plan`.
+#[inline(always)]
+fn span_pixels<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    span: (usize, i32, i32, i32),
+    (acc, step): ([u32; 5], [u32; 5]),
+    flat: [i32; 3],
+    plan: &SpanPlan,
+    env: &PixelEnv,
+) {
+    let (row, y, x_start, x_end) = span;
+    let (uv, duv, mask) = (
+        (acc[3], acc[4]),
+        (step[3], step[4]),
+        (env.mask_or, env.blend),
+    );
+    let line = (y & 3) as usize;
+    match (plan.dithered, plan.plain_page) {
+        (Some(c), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true>(
+            vram,
+            (row, x_start, x_end),
+            uv,
+            duv,
+            page,
+            (&c[line], &env.lut),
+            mask,
+        ),
+        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
+            clut4_span::<BLEND, MASK_CHECK, false>(
+                vram,
+                (row, x_start, x_end),
+                uv,
+                duv,
+                page,
+                (&NO_CELLS, &env.lut),
+                mask,
+            )
+        }
+        (Some(c), None) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+            vram,
+            span,
+            acc,
+            step,
+            flat,
+            env,
+            Some(&c[line]),
+        ),
+        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+            vram, span, acc, step, flat, env, None,
+        ),
+    }
 }
 
 /// Shade `[x_start, x_end)` of line `y` (VRAM row offset `row`) pixel by pixel from the
