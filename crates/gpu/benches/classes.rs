@@ -10,7 +10,10 @@
 //! axis (25 drawn). Quads: 320x240, inside the area.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use gpu::Gpu;
+use gpu::encode::{
+    self, Line, Polygon, PolygonTexture, Rectangle, RectangleTexture, SpriteSize, Vertex,
+};
+use gpu::{BlendMode, ClutAttr, DrawMode, Gpu, Texpage, TextureDepth};
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -18,12 +21,34 @@ const PRIMITIVES: usize = 1000;
 const AREA_W: u32 = 640;
 const AREA_H: u32 = 490;
 const LEG: u32 = 24;
-/// 4-bit page at VRAM (640, 0): texpage attribute bits 0-3 = 10, depth 0.
-const PAGE4: u32 = 10;
-/// 15-bit page at VRAM (768, 256): bits 0-3 = 12, bit 4 = 1, depth 2 (bits 7-8).
-const PAGE15: u32 = 12 | 1 << 4 | 2 << 7;
-/// CLUT at VRAM (0, 500): attribute X / 16 in bits 0-5, Y in bits 6-14.
-const CLUT: u32 = 500 << 6;
+/// The 4-bit page at VRAM (640, 0).
+const PAGE4: Texpage = page(640, 0, TextureDepth::Clut4);
+/// The 15-bit page at VRAM (768, 256).
+const PAGE15: Texpage = page(768, 256, TextureDepth::Direct15);
+/// The CLUT at VRAM (0, 500).
+const CLUT: ClutAttr = ClutAttr { x: 0, y: 500 };
+
+const fn page(page_x: u16, page_y: u16, depth: TextureDepth) -> Texpage {
+    Texpage {
+        page_x,
+        page_y,
+        blend: BlendMode::Average,
+        depth,
+        depth_reserved: false,
+        texture_disable: false,
+    }
+}
+
+/// The draw mode word set before a class: its page, dithering on or off.
+fn draw_mode(page: Texpage, dither: bool) -> u32 {
+    encode::draw_mode(DrawMode {
+        page_x: page.page_x,
+        page_y: page.page_y,
+        depth: page.depth,
+        dither,
+        ..DrawMode::default()
+    })
+}
 
 /// xorshift32, seeded: the same words every run.
 struct Rng(u32);
@@ -40,36 +65,50 @@ impl Rng {
     fn below(&mut self, n: u32) -> u32 {
         self.next() % n
     }
-    fn color(&mut self) -> u32 {
-        self.next() & 0xFF_FFFF
+    fn color(&mut self) -> [u8; 3] {
+        let [r, g, b, _] = self.next().to_le_bytes();
+        [r, g, b]
     }
-    /// A UV word inside the 256x256 page, `attr` in the high half.
-    fn uv(&mut self, attr: u32) -> u32 {
-        attr << 16 | (self.next() & 0xFFFF)
+    /// A texel (U, V) inside the 256x256 page.
+    fn uv(&mut self) -> (u8, u8) {
+        let [u, v, ..] = self.next().to_le_bytes();
+        (u, v)
     }
 }
 
-fn xy(x: u32, y: u32) -> u32 {
-    y << 16 | x
+/// A vertex at (x, y) of colour `color` and texel `uv`.
+fn vertex(x: u32, y: u32, color: [u8; 3], (u, v): (u8, u8)) -> Vertex {
+    Vertex {
+        x: x as i16,
+        y: y as i16,
+        color,
+        u,
+        v,
+    }
 }
 
 /// The three corners of a right triangle with 24-pixel legs inside the area.
-fn right_triangle(rng: &mut Rng) -> [u32; 3] {
+fn right_triangle(rng: &mut Rng) -> [(u32, u32); 3] {
     let x = rng.below(AREA_W - LEG);
     let y = rng.below(AREA_H - LEG);
-    [xy(x, y), xy(x + LEG, y), xy(x, y + LEG)]
+    [(x, y), (x + LEG, y), (x, y + LEG)]
+}
+
+/// A textured polygon's texture: `clut`, `page`, modulated or raw.
+fn texture(clut: ClutAttr, page: Texpage, raw: bool) -> Option<PolygonTexture> {
+    Some(PolygonTexture { clut, page, raw })
 }
 
 /// Drawing area 640x490 at the origin, no offset, textures and CLUT uploaded.
 fn setup(rng: &mut Rng) -> Gpu {
     let mut g = Gpu::new();
     g.gp0_words(&[
-        0xE300_0000,
-        0xE400_0000 | (AREA_H - 1) << 10 | (AREA_W - 1),
-        0xE500_0000,
+        encode::area_top_left(0, 0),
+        encode::area_bottom_right(AREA_W as u16 - 1, AREA_H as u16 - 1),
+        encode::drawing_offset(0, 0),
     ]);
     // 4-bit page: 64 halfwords x 256 lines of nibbles 1-15.
-    g.gp0_words(&[0xA000_0000, xy(640, 0), 256 << 16 | 64]);
+    g.gp0_words(&encode::cpu_to_vram(640, 0, 64, 256));
     for _ in 0..64 * 256 / 2 {
         let mut w = 0u32;
         for n in 0..8 {
@@ -78,12 +117,12 @@ fn setup(rng: &mut Rng) -> Gpu {
         g.gp0(w);
     }
     // CLUT: 16 non-zero colours.
-    g.gp0_words(&[0xA000_0000, xy(0, 500), 1 << 16 | 16]);
+    g.gp0_words(&encode::cpu_to_vram(0, 500, 16, 1));
     for _ in 0..8 {
         g.gp0((1 + rng.below(0xFFFF)) << 16 | (1 + rng.below(0xFFFF)));
     }
     // 15-bit page: 256x256 non-zero texels.
-    g.gp0_words(&[0xA000_0000, xy(768, 256), 256 << 16 | 256]);
+    g.gp0_words(&encode::cpu_to_vram(768, 256, 256, 256));
     for _ in 0..256 * 256 / 2 {
         g.gp0((1 + rng.below(0xFFFF)) << 16 | (1 + rng.below(0xFFFF)));
     }
@@ -114,92 +153,146 @@ fn classes() -> Vec<Class> {
             pixels,
         });
     };
-    class("flat_triangles", 0xE100_0000, tri_pixels, &mut |r, w| {
-        let [a, b, c] = right_triangle(r);
-        w.extend([0x2000_0000 | r.color(), a, b, c]);
-    });
+    let none = page(0, 0, TextureDepth::Clut4);
+    class(
+        "flat_triangles",
+        draw_mode(none, false),
+        tri_pixels,
+        &mut |r, w| {
+            let corners = right_triangle(r);
+            let color = r.color();
+            let p = Polygon::triangle(corners.map(|(x, y)| vertex(x, y, color, (0, 0))));
+            w.extend_from_slice(&p.packet());
+        },
+    );
     class(
         "gouraud_triangles_dithered",
-        0xE100_0200,
+        draw_mode(none, true),
         tri_pixels,
         &mut |r, w| {
             let [a, b, c] = right_triangle(r);
-            w.extend([0x3000_0000 | r.color(), a, r.color(), b, r.color(), c]);
+            let mut corner = |(x, y)| vertex(x, y, r.color(), (0, 0));
+            let p = Polygon {
+                vertices: [corner(a), corner(b), corner(c), Vertex::default()],
+                gouraud: true,
+                ..Polygon::default()
+            };
+            w.extend_from_slice(&p.packet());
         },
     );
     class(
         "clut4_textured_gouraud_dithered",
-        0xE100_0200 | PAGE4,
+        draw_mode(PAGE4, true),
         tri_pixels,
         &mut |r, w| {
             let [a, b, c] = right_triangle(r);
-            w.extend([0x3400_0000 | r.color(), a, r.uv(CLUT)]);
-            w.extend([r.color(), b, r.uv(PAGE4 | 1 << 9)]);
-            w.extend([r.color(), c, r.uv(0)]);
+            let mut corner = |(x, y)| {
+                let color = r.color();
+                vertex(x, y, color, r.uv())
+            };
+            let p = Polygon {
+                vertices: [corner(a), corner(b), corner(c), Vertex::default()],
+                gouraud: true,
+                texture: texture(CLUT, PAGE4, false),
+                ..Polygon::default()
+            };
+            w.extend_from_slice(&p.packet());
         },
     );
     class(
         "raw15_textured_triangles",
-        0xE100_0000 | PAGE15,
+        draw_mode(PAGE15, false),
         tri_pixels,
         &mut |r, w| {
             let [a, b, c] = right_triangle(r);
-            w.extend([0x2500_0000, a, r.uv(0), b, r.uv(PAGE15), c, r.uv(0)]);
+            let mut corner = |(x, y)| vertex(x, y, [0; 3], r.uv());
+            let p = Polygon {
+                vertices: [corner(a), corner(b), corner(c), Vertex::default()],
+                texture: texture(ClutAttr::default(), PAGE15, true),
+                ..Polygon::default()
+            };
+            w.extend_from_slice(&p.packet());
         },
     );
     class(
         "clut4_sprites_16x16",
-        0xE100_0000 | PAGE4,
+        draw_mode(PAGE4, false),
         256,
         &mut |r, w| {
             let x = r.below(AREA_W - 16);
             let y = r.below(AREA_H - 16);
-            w.extend([0x7C00_0000 | r.color(), xy(x, y), r.uv(CLUT)]);
+            let color = r.color();
+            let (u, v) = r.uv();
+            let sprite = Rectangle {
+                x: x as i16,
+                y: y as i16,
+                color,
+                size: SpriteSize::Sixteen,
+                texture: Some(RectangleTexture {
+                    clut: CLUT,
+                    u,
+                    v,
+                    raw: false,
+                }),
+                ..Rectangle::default()
+            };
+            w.extend_from_slice(&sprite.packet());
         },
     );
-    class("flat_lines", 0xE100_0000, LEG as u64 + 1, &mut |r, w| {
-        let x = LEG + r.below(AREA_W - 2 * LEG);
-        let y = LEG + r.below(AREA_H - 2 * LEG);
-        // 24 pixels along the major axis, any direction.
-        let minor = r.below(2 * LEG + 1);
-        let (dx, dy) = match r.below(4) {
-            0 => (2 * LEG, minor),
-            1 => (0, minor),
-            2 => (minor, 2 * LEG),
-            _ => (minor, 0),
-        };
-        w.extend([
-            0x4000_0000 | r.color(),
-            xy(x, y),
-            xy(x + dx - LEG, y + dy - LEG),
-        ]);
-    });
-    class("flat_quads_320x240", 0xE100_0000, 320 * 240, &mut |r, w| {
-        let x = r.below(AREA_W - 320 + 1);
-        let y = r.below(AREA_H - 240 + 1);
-        w.extend([
-            0x2800_0000 | r.color(),
-            xy(x, y),
-            xy(x + 320, y),
-            xy(x, y + 240),
-            xy(x + 320, y + 240),
-        ]);
-    });
+    class(
+        "flat_lines",
+        draw_mode(none, false),
+        LEG as u64 + 1,
+        &mut |r, w| {
+            let x = LEG + r.below(AREA_W - 2 * LEG);
+            let y = LEG + r.below(AREA_H - 2 * LEG);
+            // 24 pixels along the major axis, any direction.
+            let minor = r.below(2 * LEG + 1);
+            let (dx, dy) = match r.below(4) {
+                0 => (2 * LEG, minor),
+                1 => (0, minor),
+                2 => (minor, 2 * LEG),
+                _ => (minor, 0),
+            };
+            let color = r.color();
+            let line = Line {
+                vertices: [
+                    vertex(x, y, color, (0, 0)),
+                    vertex(x + dx - LEG, y + dy - LEG, color, (0, 0)),
+                ],
+                ..Line::default()
+            };
+            w.extend_from_slice(&line.packet());
+        },
+    );
+    class(
+        "flat_quads_320x240",
+        draw_mode(none, false),
+        320 * 240,
+        &mut |r, w| {
+            let x = r.below(AREA_W - 320 + 1);
+            let y = r.below(AREA_H - 240 + 1);
+            let color = r.color();
+            let corners = [(x, y), (x + 320, y), (x, y + 240), (x + 320, y + 240)];
+            let p = Polygon::quad(corners.map(|(x, y)| vertex(x, y, color, (0, 0))));
+            w.extend_from_slice(&p.packet());
+        },
+    );
     class(
         "semi_transparent_clut4_triangles",
-        0xE100_0000 | PAGE4,
+        draw_mode(PAGE4, false),
         tri_pixels,
         &mut |r, w| {
             let [a, b, c] = right_triangle(r);
-            w.extend([
-                0x2600_0000 | r.color(),
-                a,
-                r.uv(CLUT),
-                b,
-                r.uv(PAGE4),
-                c,
-                r.uv(0),
-            ]);
+            let color = r.color();
+            let mut corner = |(x, y)| vertex(x, y, color, r.uv());
+            let p = Polygon {
+                vertices: [corner(a), corner(b), corner(c), Vertex::default()],
+                semi_transparent: true,
+                texture: texture(CLUT, PAGE4, false),
+                ..Polygon::default()
+            };
+            w.extend_from_slice(&p.packet());
         },
     );
     out

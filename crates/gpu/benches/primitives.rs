@@ -3,18 +3,33 @@
 //! drawing-time accounting included). Textures and CLUTs are uploaded once up front.
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use gpu::Gpu;
+use gpu::encode::{
+    self, Line, Packet, Polygon, PolygonTexture, Rectangle, RectangleTexture, Vertex,
+};
+use gpu::{BlendMode, ClutAttr, DrawMode, Gpu, Texpage};
 use std::hint::black_box;
 
-fn xy(x: u32, y: u32) -> u32 {
-    y << 16 | x
-}
+/// The 4-bit texture page at (640, 0).
+const PAGE: Texpage = Texpage {
+    page_x: 640,
+    page_y: 0,
+    blend: BlendMode::Average,
+    depth: gpu::TextureDepth::Clut4,
+    depth_reserved: false,
+    texture_disable: false,
+};
+/// The 16-entry CLUT at (0, 480).
+const CLUT: ClutAttr = ClutAttr { x: 0, y: 480 };
 
 fn setup() -> Gpu {
     let mut g = Gpu::new();
-    g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
-    // A 4-bit 64x256 checker texture at page (640, 0) and a 16-entry CLUT at (0, 480).
-    g.gp0_words(&[0xA000_0000, xy(640, 0), 256 << 16 | 64]);
+    g.gp0_words(&[
+        encode::area_top_left(0, 0),
+        encode::area_bottom_right(1023, 511),
+        encode::drawing_offset(0, 0),
+    ]);
+    // A 4-bit 64x256 checker texture at the page and a 16-entry CLUT.
+    g.gp0_words(&encode::cpu_to_vram(640, 0, 64, 256));
     for i in 0..(64 * 256 / 2) {
         g.gp0(if (i / 64) % 2 == 0 {
             0x1010_1010
@@ -22,43 +37,88 @@ fn setup() -> Gpu {
             0x0101_0101
         });
     }
-    g.gp0_words(&[0xA000_0000, xy(0, 480), 1 << 16 | 16]);
+    g.gp0_words(&encode::cpu_to_vram(0, 480, 16, 1));
     for i in 0..8u32 {
         g.gp0((0x7FFF - i * 0x421) << 16 | (0x1234 + i));
     }
     g
 }
 
+/// The draw mode of the benches: the page, dithering on when `dither`.
+fn draw_mode(dither: bool) -> u32 {
+    encode::draw_mode(DrawMode {
+        page_x: PAGE.page_x,
+        dither,
+        ..DrawMode::default()
+    })
+}
+
+fn vertex(x: i16, y: i16, color: [u8; 3], (u, v): (u8, u8)) -> Vertex {
+    Vertex { x, y, color, u, v }
+}
+
 fn triangles(c: &mut Criterion) {
     let mut group = c.benchmark_group("triangle");
-    for size in [16u32, 64, 256] {
-        let (a, b, cc) = (xy(10, 10), xy(10 + size, 10), xy(10, 10 + size));
-        let flat = [0x2000_8040, a, b, cc];
-        let gouraud = [0x3000_00FF, a, 0x0000_FF00, b, 0x00FF_0000, cc];
-        // 4-bit CLUT texture, page x = 640 (E1 bits 0-3 = 10), CLUT at (0, 480).
-        let clut = (480 << 6) << 16;
-        let tpage = 10 << 16;
-        let textured = [0x2480_8080, a, clut, b, tpage | 0x3F, cc, 0x3F00];
-        let gouraud_textured_blend = [
-            0x3680_8080,
-            a,
-            clut,
-            0x0040_8080,
-            b,
-            tpage | 0x20 << 16 | 0x3F,
-            0x0080_4080,
-            cc,
-            0x3F00,
-        ];
-        let cases: [(&str, &[u32]); 4] = [
-            ("flat", &flat),
-            ("gouraud_dither", &gouraud),
-            ("textured_4bit", &textured),
-            ("gouraud_textured_blend_dither", &gouraud_textured_blend),
+    for size in [16i16, 64, 256] {
+        let (a, b, cc) = ((10, 10), (10 + size, 10), (10, 10 + size));
+        let at = |(x, y), color, uv| vertex(x, y, color, uv);
+        let grey = [0x80, 0x80, 0x80];
+        let flat = Polygon::triangle([a, b, cc].map(|p| at(p, [0x40, 0x80, 0], (0, 0))));
+        let gouraud = Polygon {
+            vertices: [
+                at(a, [0xFF, 0, 0], (0, 0)),
+                at(b, [0, 0xFF, 0], (0, 0)),
+                at(cc, [0, 0, 0xFF], (0, 0)),
+                Vertex::default(),
+            ],
+            gouraud: true,
+            ..Polygon::default()
+        };
+        let textured = Polygon {
+            vertices: [
+                at(a, grey, (0, 0)),
+                at(b, grey, (0x3F, 0)),
+                at(cc, grey, (0, 0x3F)),
+                Vertex::default(),
+            ],
+            texture: Some(PolygonTexture {
+                clut: CLUT,
+                page: PAGE,
+                raw: false,
+            }),
+            ..Polygon::default()
+        };
+        let gouraud_textured_blend = Polygon {
+            vertices: [
+                at(a, grey, (0, 0)),
+                at(b, [0x80, 0x80, 0x40], (0x3F, 0)),
+                at(cc, [0x80, 0x40, 0x80], (0, 0x3F)),
+                Vertex::default(),
+            ],
+            gouraud: true,
+            semi_transparent: true,
+            texture: Some(PolygonTexture {
+                clut: CLUT,
+                page: Texpage {
+                    blend: BlendMode::Add,
+                    ..PAGE
+                },
+                raw: false,
+            }),
+            ..Polygon::default()
+        };
+        let cases: [(&str, Packet); 4] = [
+            ("flat", flat.packet()),
+            ("gouraud_dither", gouraud.packet()),
+            ("textured_4bit", textured.packet()),
+            (
+                "gouraud_textured_blend_dither",
+                gouraud_textured_blend.packet(),
+            ),
         ];
         for (name, packet) in cases {
             let mut g = setup();
-            g.gp0(0xE100_020A);
+            g.gp0(draw_mode(true));
             group.bench_with_input(BenchmarkId::new(name, size), &packet, |bch, p| {
                 bch.iter(|| g.gp0_words(black_box(p)))
             });
@@ -70,47 +130,62 @@ fn triangles(c: &mut Criterion) {
 fn rectangles_and_lines(c: &mut Criterion) {
     let mut group = c.benchmark_group("other");
     let mut g = setup();
+    let rectangle = Rectangle {
+        x: 10,
+        y: 10,
+        color: [0x40, 0x80, 0],
+        width: 64,
+        height: 64,
+        ..Rectangle::default()
+    };
+    let flat = rectangle.packet();
     group.bench_function("rectangle_flat_64x64", |b| {
-        b.iter(|| g.gp0_words(black_box(&[0x6000_8040, xy(10, 10), 64 << 16 | 64])))
+        b.iter(|| g.gp0_words(black_box(&flat)))
     });
+    let textured = Rectangle {
+        color: [0x80, 0x80, 0x80],
+        texture: Some(RectangleTexture {
+            clut: CLUT,
+            ..RectangleTexture::default()
+        }),
+        ..rectangle
+    };
+    let packet = textured.packet();
     group.bench_function("rectangle_textured_64x64", |b| {
-        g.gp0(0xE100_000A);
-        b.iter(|| {
-            g.gp0_words(black_box(&[
-                0x6480_8080,
-                xy(10, 10),
-                (480 << 6) << 16,
-                64 << 16 | 64,
-            ]))
-        })
+        g.gp0(draw_mode(false));
+        b.iter(|| g.gp0_words(black_box(&packet)))
     });
+    let blended = Rectangle {
+        semi_transparent: true,
+        ..textured
+    }
+    .packet();
     group.bench_function("rectangle_textured_blend_64x64", |b| {
-        g.gp0(0xE100_000A);
-        b.iter(|| {
-            g.gp0_words(black_box(&[
-                0x6680_8080,
-                xy(10, 10),
-                (480 << 6) << 16,
-                64 << 16 | 64,
-            ]))
-        })
+        g.gp0(draw_mode(false));
+        b.iter(|| g.gp0_words(black_box(&blended)))
     });
+    let red = [0xFF, 0, 0];
+    let line = Line {
+        vertices: [
+            vertex(10, 10, red, (0, 0)),
+            vertex(210, 90, [0, 0, 0xFF], (0, 0)),
+        ],
+        ..Line::default()
+    };
+    let flat_line = line.packet();
     group.bench_function("line_flat_200px", |b| {
-        b.iter(|| g.gp0_words(black_box(&[0x4000_00FF, xy(10, 10), xy(210, 90)])))
+        b.iter(|| g.gp0_words(black_box(&flat_line)))
     });
+    let gouraud_line = Line {
+        gouraud: true,
+        ..line
+    }
+    .packet();
     group.bench_function("line_gouraud_200px", |b| {
-        b.iter(|| {
-            g.gp0_words(black_box(&[
-                0x5000_00FF,
-                xy(10, 10),
-                0x00FF_0000,
-                xy(210, 90),
-            ]))
-        })
+        b.iter(|| g.gp0_words(black_box(&gouraud_line)))
     });
-    group.bench_function("fill_320x240", |b| {
-        b.iter(|| g.gp0_words(black_box(&[0x0200_0000, 0, 240 << 16 | 320])))
-    });
+    let fill = encode::fill([0, 0, 0], 0, 0, 320, 240);
+    group.bench_function("fill_320x240", |b| b.iter(|| g.gp0_words(black_box(&fill))));
     group.finish();
 }
 

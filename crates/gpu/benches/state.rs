@@ -3,25 +3,32 @@
 //! a drawn VRAM, a transfer in progress and queued FIFO words.
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use gpu::encode::{self, Polygon, Vertex};
 use gpu::{Gpu, SaveState};
 use std::hint::black_box;
-
-fn xy(x: u32, y: u32) -> u32 {
-    y << 16 | x
-}
 
 /// Every VRAM pixel written (a gradient with the mask bit in half of them), then a
 /// CPU-to-VRAM transfer left unfinished behind a busy GPU.
 fn drawn() -> Gpu {
     let mut g = Gpu::new();
-    g.gp0_words(&[0xA000_0000, 0, 512 << 16 | 1024]);
+    g.gp0_words(&encode::cpu_to_vram(0, 0, 1024, 512));
     for i in 0..512 * 1024 / 2 {
         let p = (i as u32).wrapping_mul(0x9E37_79B9) >> 1;
         g.gp0(p);
     }
-    g.gp0_words(&[0xE300_0000, 0xE407_FFFF]);
-    g.gp0_words(&[0x2000_00FF, xy(0, 0), xy(300, 0), xy(0, 200)]);
-    g.gp0_words(&[0xA000_0000, xy(100, 100), 4 << 16 | 4, 1, 2]);
+    g.gp0_words(&[
+        encode::area_top_left(0, 0),
+        encode::area_bottom_right(1023, 511),
+    ]);
+    let red = |x, y| Vertex {
+        x,
+        y,
+        color: [0xFF, 0, 0],
+        ..Vertex::default()
+    };
+    g.gp0_words(&Polygon::triangle([red(0, 0), red(300, 0), red(0, 200)]).packet());
+    g.gp0_words(&encode::cpu_to_vram(100, 100, 4, 4));
+    g.gp0_words(&[1, 2]);
     g
 }
 
