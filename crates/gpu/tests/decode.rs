@@ -3,12 +3,22 @@
 
 use gpu::Gpu;
 use gpu::decode::Coverage;
+use gpu::encode::{self, Line, Polygon, Rectangle, Vertex};
 use proptest::prelude::*;
 
-/// A signed 11-bit vertex word from x, y in -1100..1100 (wrapping exercised).
-fn vertex(x: i32, y: i32) -> u32 {
-    (x as u32 & 0x7FF) | (y as u32 & 0x7FF) << 16
+/// A vertex at x, y in -1100..1100 (the packet keeps 11 bits: wrapping exercised) of
+/// colour `color`.
+fn vertex(x: i32, y: i32, color: [u8; 3]) -> Vertex {
+    Vertex {
+        x: x as i16,
+        y: y as i16,
+        color,
+        ..Vertex::default()
+    }
 }
+
+/// Yellow, the colour of the primitives.
+const YELLOW: [u8; 3] = [0xFF, 0xFF, 0];
 
 fn check(gpu: &mut Gpu, words: &[u32]) -> Result<(), TestCaseError> {
     let d = gpu.decode_gp0(words);
@@ -49,9 +59,9 @@ fn setup(area: (u32, u32, u32, u32), offset: (i32, i32)) -> Gpu {
     let (l, t, r, b) = area;
     let mut gpu = Gpu::new();
     gpu.gp0_words(&[
-        0xE300_0000 | l | t << 10,
-        0xE400_0000 | r | b << 10,
-        0xE500_0000 | (offset.0 as u32 & 0x7FF) | (offset.1 as u32 & 0x7FF) << 11,
+        encode::area_top_left(l as u16, t as u16),
+        encode::area_bottom_right(r as u16, b as u16),
+        encode::drawing_offset(offset.0 as i16, offset.1 as i16),
     ]);
     gpu
 }
@@ -69,14 +79,15 @@ proptest! {
         off in (-64i32..64, -64i32..64),
         v in prop::array::uniform4((-1100i32..1100, -600i32..600)),
         quad in any::<bool>(),
-        color in 1u32..0xFF_FFFF,
+        color in any::<[u8; 3]>().prop_filter("not black", |c| *c != [0; 3]),
     ) {
         let mut gpu = setup(a, off);
-        let mut words = vec![(if quad { 0x28 } else { 0x20 }) << 24 | color];
-        for (x, y) in v.iter().take(if quad { 4 } else { 3 }) {
-            words.push(vertex(*x, *y));
-        }
-        check(&mut gpu, &words)?;
+        let polygon = Polygon {
+            vertices: v.map(|(x, y)| vertex(x, y, color)),
+            quad,
+            ..Polygon::default()
+        };
+        check(&mut gpu, &polygon.packet())?;
     }
 
     #[test]
@@ -86,11 +97,8 @@ proptest! {
         v in prop::array::uniform3((-40i32..40, -40i32..40)),
     ) {
         let mut gpu = setup(a, (0, 0));
-        let mut words = vec![0x2000_FFFF];
-        for (x, y) in v {
-            words.push(vertex(base.0 + x, base.1 + y));
-        }
-        check(&mut gpu, &words)?;
+        let v = v.map(|(x, y)| vertex(base.0 + x, base.1 + y, YELLOW));
+        check(&mut gpu, &Polygon::triangle(v).packet())?;
     }
 
     #[test]
@@ -99,7 +107,11 @@ proptest! {
         p in prop::array::uniform2((-1100i32..1100, -600i32..600)),
     ) {
         let mut gpu = setup(a, (0, 0));
-        check(&mut gpu, &[0x4000_FFFF, vertex(p[0].0, p[0].1), vertex(p[1].0, p[1].1)])?;
+        let line = Line {
+            vertices: p.map(|(x, y)| vertex(x, y, YELLOW)),
+            ..Line::default()
+        };
+        check(&mut gpu, &line.packet())?;
     }
 
     #[test]
@@ -109,6 +121,14 @@ proptest! {
         size in (0u32..1100, 0u32..600),
     ) {
         let mut gpu = setup(a, (0, 0));
-        check(&mut gpu, &[0x6000_FFFF, vertex(p.0, p.1), size.0 | size.1 << 16])?;
+        let rectangle = Rectangle {
+            x: p.0 as i16,
+            y: p.1 as i16,
+            color: YELLOW,
+            width: size.0 as u16,
+            height: size.1 as u16,
+            ..Rectangle::default()
+        };
+        check(&mut gpu, &rectangle.packet())?;
     }
 }

@@ -13,6 +13,7 @@
 //! back, so every texel the model reads is the value before drawing: the model does not
 //! need the order in which the hardware reads and writes.
 
+use gpu::encode;
 use gpu::{Gpu, Vram};
 use proptest::prelude::*;
 
@@ -61,9 +62,9 @@ impl Env {
     fn words(&self) -> [u32; 4] {
         let a = self.area;
         [
-            0xE300_0000 | a.0 | a.1 << 10,
-            0xE400_0000 | a.2 | a.3 << 10,
-            0xE500_0000 | (self.offset.0 as u32 & 0x7FF) | (self.offset.1 as u32 & 0x7FF) << 11,
+            encode::area_top_left(a.0 as u16, a.1 as u16),
+            encode::area_bottom_right(a.2 as u16, a.3 as u16),
+            encode::drawing_offset(self.offset.0 as i16, self.offset.1 as i16),
             self.mask.e6(),
         ]
     }

@@ -5,6 +5,7 @@
 //! test's own parity rule.
 
 use gpu::Gpu;
+use gpu::encode;
 use proptest::prelude::*;
 
 const MODE_480I: u32 = 0x0800_0025;
@@ -13,7 +14,12 @@ fn setup(mode: u32, e1: u32, start_y: u32) -> Gpu {
     let mut g = Gpu::new();
     g.gp1(mode);
     g.gp1(0x0500_0000 | start_y << 10);
-    g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023, 0xE500_0000, e1]);
+    g.gp0_words(&[
+        encode::area_top_left(0, 0),
+        encode::area_bottom_right(1023, 511),
+        encode::drawing_offset(0, 0),
+        e1,
+    ]);
     g
 }
 

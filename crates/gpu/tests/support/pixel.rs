@@ -24,8 +24,13 @@ pub struct Texture {
 impl Texture {
     /// The E2h word selecting this texture window (§2).
     pub fn e2(&self) -> u32 {
-        let [mx, my, ox, oy] = self.window;
-        0xE200_0000 | mx | my << 5 | ox << 10 | oy << 15
+        let [mask_x, mask_y, offset_x, offset_y] = self.window.map(|f| f as u8);
+        gpu::encode::texture_window(gpu::TextureWindow {
+            mask_x,
+            mask_y,
+            offset_x,
+            offset_y,
+        })
     }
 
     /// Texpage bits 0-4 and 7-8 (page and depth) as E1h and the polygon attribute hold them.
@@ -106,7 +111,10 @@ pub struct Mask {
 impl Mask {
     /// The E6h word.
     pub fn e6(&self) -> u32 {
-        0xE600_0000 | self.set as u32 | (self.check as u32) << 1
+        gpu::encode::mask_bits(gpu::MaskSettings {
+            set: self.set,
+            check: self.check,
+        })
     }
 }
 
