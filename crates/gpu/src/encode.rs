@@ -38,6 +38,21 @@ pub struct Packet {
 }
 
 impl Packet {
+    /// `len` words of zero.
+    fn zeroed(len: usize) -> Self {
+        Packet {
+            words: [0; MAX_PACKET],
+            len,
+        }
+    }
+
+    /// OR `w` into word `i` (a word past the buffer is not written).
+    fn put(&mut self, i: usize, w: u32) {
+        if let Some(slot) = self.words.get_mut(i) {
+            *slot |= w;
+        }
+    }
+
     /// The packet's words.
     pub fn words(&self) -> &[u32] {
         self.words.get(..self.len).unwrap_or(&self.words)
@@ -160,31 +175,23 @@ impl Polygon {
     /// word and texture word (textured), the first colour in the command word.
     pub fn packet(&self) -> Packet {
         let op = self.op();
-        let mut words = [0u32; MAX_PACKET];
-        let mut put = |i: usize, w: u32| {
-            if let Some(slot) = words.get_mut(i) {
-                *slot |= w;
-            }
-        };
-        put(0, word(op.op(), 0));
+        let mut p = Packet::zeroed(op.words());
+        p.put(0, word(op.op(), 0));
         for (n, v) in self.vertices.iter().enumerate().take(op.vertices()) {
             if n == 0 || op.gouraud {
-                put(op.color_word(n), rgb(v.color));
+                p.put(op.color_word(n), rgb(v.color));
             }
-            put(op.position_word(n), v.position());
+            p.put(op.position_word(n), v.position());
             if let Some(t) = self.texture {
                 let attribute = match n {
                     0 => t.clut.bits(),
                     1 => t.page.bits(),
                     _ => 0,
                 };
-                put(op.uv_word(n), uv_word(v.u, v.v, attribute));
+                p.put(op.uv_word(n), uv_word(v.u, v.v, attribute));
             }
         }
-        Packet {
-            words,
-            len: op.words(),
-        }
+        p
     }
 }
 
@@ -217,23 +224,15 @@ impl Line {
 }
 
 fn line_words(op: LineOp, vertices: &[Vertex; 2]) -> Packet {
-    let mut words = [0u32; MAX_PACKET];
-    let mut put = |i: usize, w: u32| {
-        if let Some(slot) = words.get_mut(i) {
-            *slot |= w;
-        }
-    };
-    put(0, word(op.op(), 0));
+    let mut p = Packet::zeroed(op.words());
+    p.put(0, word(op.op(), 0));
     for (n, v) in vertices.iter().enumerate() {
         if n == 0 || op.gouraud {
-            put(op.color_word(n), rgb(v.color));
+            p.put(op.color_word(n), rgb(v.color));
         }
-        put(op.position_word(n), v.position());
+        p.put(op.position_word(n), v.position());
     }
-    Packet {
-        words,
-        len: op.words(),
-    }
+    p
 }
 
 /// The word this module ends a polyline with: the pattern `(w & F000F000h) == 50005000h`
@@ -331,27 +330,17 @@ impl Rectangle {
     /// (variable).
     pub fn packet(&self) -> Packet {
         let op = self.op();
-        let mut words = [0u32; MAX_PACKET];
-        words[0] = word(op.op(), rgb(self.color));
-        let mut put = |i: usize, w: u32| {
-            if let Some(slot) = words.get_mut(i) {
-                *slot = w;
-            }
-        };
-        put(
-            op.position_word(),
-            command::position_bits(self.x.into(), self.y.into()),
-        );
+        let mut p = Packet::zeroed(op.words());
+        p.put(0, word(op.op(), rgb(self.color)));
+        let position = command::position_bits(self.x.into(), self.y.into());
+        p.put(op.position_word(), position);
         if let Some(t) = self.texture {
-            put(op.uv_word(), uv_word(t.u, t.v, t.clut.bits()));
+            p.put(op.uv_word(), uv_word(t.u, t.v, t.clut.bits()));
         }
         if op.size == SpriteSize::Variable {
-            put(op.size_word(), pair(self.width, self.height));
+            p.put(op.size_word(), pair(self.width, self.height));
         }
-        Packet {
-            words,
-            len: op.words(),
-        }
+        p
     }
 }
 
