@@ -6,7 +6,7 @@
 //! the set-up (`FlatRows`, `PartRows`), so that the pixel loops keep their registers: with
 //! its rows inlined, the raw 15-bit class took from 8,321 to 8,845 instructions a triangle
 //! as unrelated set-up code changed (a VRAM pointer reloaded at every pixel); out of line,
-//! 8,392 whatever the set-up holds. Flat rows from the positions alone took flat triangles
+//! 8,318 whatever the set-up holds. Flat rows from the positions alone took flat triangles
 //! from 3,204 to 1,536 instructions; the rest of the history is in docs/performance.md
 //! ("What each change bought").
 
@@ -439,35 +439,24 @@ impl PartRows {
         page: usize,
         mask: (u16, BlendMode),
     ) -> DrawCount {
-        let Self {
-            mut y,
-            last,
-            stride,
-            mut l,
-            mut r,
-            dl,
-            dr,
-            clip,
-            mut attr,
-            attr_step,
-        } = self;
         let mut drawn = DrawCount::default();
-        while y < last {
-            let x_start = ((l >> 32) as i32).max(clip.0);
-            let x_end = ((r >> 32) as i32).min(clip.1);
-            l = l.wrapping_add(dl);
-            r = r.wrapping_add(dr);
+        // Only U and V are read: they alone are stepped.
+        let (mut l, mut r, mut y) = (self.l, self.r, self.y);
+        let (mut u, mut v) = (self.attr[3], self.attr[4]);
+        while y < self.last {
+            let x_start = ((l >> 32) as i32).max(self.clip.0);
+            let x_end = ((r >> 32) as i32).min(self.clip.1);
             if x_start < x_end {
                 drawn.span(x_start, x_end, BLEND || MASK_CHECK);
                 let row = ((y & 511) as usize) * VRAM_WIDTH;
-                let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
-                let uv = (at(3, duv.0), at(4, duv.1));
+                let at = |a: u32, d: u32| a.wrapping_add(d.wrapping_mul(x_start as u32));
+                let uv = (at(u, duv.0), at(v, duv.1));
                 raw15_span::<BLEND, MASK_CHECK>(vram, (row, x_start, x_end), uv, duv, page, mask);
             }
-            for (a, s) in attr.iter_mut().zip(attr_step) {
-                *a = a.wrapping_add(s);
-            }
-            y += stride;
+            (l, r) = (l.wrapping_add(self.dl), r.wrapping_add(self.dr));
+            u = u.wrapping_add(self.attr_step[3]);
+            v = v.wrapping_add(self.attr_step[4]);
+            y += self.stride;
         }
         drawn
     }
