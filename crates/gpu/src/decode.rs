@@ -621,20 +621,7 @@ fn polygon(
     if let Some(second) = &packet.second {
         verts.push(second.vertices[2]);
     }
-    for (i, v) in (0u8..).zip(&verts) {
-        if i == 0 || gouraud {
-            d.field(Field::VertexColor {
-                vertex: i,
-                rgb: v.color,
-            });
-        }
-        d.field(Field::Vertex {
-            vertex: i,
-            x: v.x,
-            y: v.y,
-            uv: op.textured.then(|| uv(v)),
-        });
-    }
+    vertex_fields(d, &verts, gouraud, op.textured);
     if let Some(t) = tri.texture {
         d.field(Field::Texture(t));
     } else if op.textured {
@@ -666,17 +653,10 @@ fn polygon(
     }
 }
 
-fn line(
-    d: &mut Decoded,
-    op: LineOp,
-    words: &[u32],
-    p: &[u32; MAX_PACKET],
-    draw: &DrawState,
-    complete: bool,
-) {
-    let gouraud = op.gouraud;
-    let first = line_packet(op, p, draw);
-    for (i, v) in (0u8..).zip(&first.vertices) {
+/// Each vertex's colour (the first only, unless Gouraud), position and, when `textured`,
+/// texel.
+fn vertex_fields(d: &mut Decoded, verts: &[Vertex], gouraud: bool, textured: bool) {
+    for (i, v) in (0u8..).zip(verts) {
         if i == 0 || gouraud {
             d.field(Field::VertexColor {
                 vertex: i,
@@ -687,9 +667,22 @@ fn line(
             vertex: i,
             x: v.x,
             y: v.y,
-            uv: None,
+            uv: textured.then(|| uv(v)),
         });
     }
+}
+
+fn line(
+    d: &mut Decoded,
+    op: LineOp,
+    words: &[u32],
+    p: &[u32; MAX_PACKET],
+    draw: &DrawState,
+    complete: bool,
+) {
+    let gouraud = op.gouraud;
+    let first = line_packet(op, p, draw);
+    vertex_fields(d, &first.vertices, gouraud, false);
     if let Some(b) = first.blend {
         d.field(Field::Blend(b));
     }
