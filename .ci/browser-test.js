@@ -1,13 +1,16 @@
 // Drives the inspect report in headless Chromium. Arguments: chromium path, report
 // index.html, screenshot path, frame report index.html (render --inspect), the stream's
-// file name. Exits non-zero on the first failed check.
+// file name, the stream's path and the pixel_history example (an independent replay of the
+// stream on `gpu`). Exits non-zero on the first failed check.
 "use strict";
 const { chromium } = require("playwright-core");
 const fs = require("fs");
 const os = require("os");
 const path = require("path");
 
-const [chromePath, reportPath, shotPath, framePath, streamName] = process.argv.slice(2);
+const { execFileSync } = require("child_process");
+
+const [chromePath, reportPath, shotPath, framePath, streamName, streamPath, replayBin] = process.argv.slice(2);
 
 function check(cond, what) {
   if (!cond) {
@@ -131,6 +134,47 @@ function check(cond, what) {
   check(await shown("#vram-mark", "#vram-scroll"), "clicked pixel marked in the VRAM view");
   check(await shown("#detail h2", "#detail"), "detail on screen next to the VRAM view");
   check(await shown("#rows tr.sel", "#left"), "selected row scrolled into view");
+
+  // Pixel history: a pixel changed by two commands or more, clicked; its history must match
+  // a replay of the stream on `gpu` line by line (the pixel_history example).
+  const multi = await page.evaluate(() => new Promise((resolve) => {
+    const cands = [];
+    for (let y = 1; y < 512; y += 9) for (let x = 1; x < 1024; x += 9) if (INSPECT.writerAt(x, y) > 0) cands.push([x, y]);
+    const next = (k) => {
+      if (k >= cands.length) { resolve(null); return; }
+      INSPECT.historyOf(cands[k][0], cands[k][1], (l) => (l.length >= 2 ? resolve({ x: cands[k][0], y: cands[k][1] }) : next(k + 1)));
+    };
+    next(0);
+  }));
+  check(multi !== null, "some pixel was changed by two commands or more");
+  await clickPixel(multi.x, multi.y);
+  await page.waitForFunction(() => INSPECT.history() !== null && document.querySelector("#history-rows") !== null);
+  const histo = await page.evaluate(() => INSPECT.history());
+  const replay = JSON.parse(execFileSync(replayBin, [streamPath, String(multi.x), String(multi.y)]).toString());
+  check(histo.length === replay.length && histo.length >= 2,
+    `history of (${multi.x}, ${multi.y}) lists ${histo.length} changes, the replay ${replay.length}`);
+  check(histo.every((h, n) => h.before === replay[n][1] && h.after === replay[n][2] && h.line <= replay[n][0] && replay[n][0] <= h.last),
+    "history's commands, before and after values match the replay: " + JSON.stringify(histo.map((h) => [h.line, h.before, h.after])));
+  const histRows = await page.$$eval("#history-rows tr", (r) => r.length - 1);
+  check(histRows === histo.length, "history table shows every change: " + histRows);
+  // The selected command (the last writer) highlighted on the VRAM view: as many pixels as
+  // the replay's line changed, the clicked one among them; the checkbox turns it off.
+  const lastW = histo[histo.length - 1];
+  await page.waitForFunction((n) => INSPECT.current() === n && INSPECT.highlighted() >= 0, lastW.i);
+  const lit = await page.evaluate(() => INSPECT.highlighted());
+  const want = replay[replay.length - 1][3];
+  if (lastW.line === lastW.last) check(lit === want, `changed-pixel highlight shows ${lit} pixels, the replay's line changed ${want}`);
+  check(await page.evaluate(([x, y]) => INSPECT.highlightAt(x, y), [multi.x, multi.y]), "clicked pixel highlighted");
+  await page.click("#show-changes");
+  check(await page.evaluate(([x, y]) => INSPECT.highlighted() === -1 && !INSPECT.highlightAt(x, y), [multi.x, multi.y]), "highlight turned off");
+  await page.click("#show-changes");
+  await page.waitForFunction(() => INSPECT.highlighted() >= 0);
+  // A history row links to its command.
+  await page.click("#history-rows tr:nth-child(2) a");
+  await page.waitForFunction((n) => INSPECT.current() === n, histo[0].i);
+  check(true, "history row selects its command #" + histo[0].i);
+  await clickPixel(hit.x, hit.y);
+  await page.waitForFunction((n) => INSPECT.current() === n, hit.w - 1);
 
   // Pixel readout: raw halfword, 5-bit and 8-bit channels, mask bit, coordinates.
   async function checkReadout(x, y, what) {

@@ -227,6 +227,100 @@ fn check_against_line_by_line(text: &str, rows: &[Value], s: &InspectSummary) {
     assert!(exact > 0);
 }
 
+/// Values of a history string: 4 hex digits each, `hhhh:N;` for N copies.
+fn history_values(s: &str) -> Vec<u16> {
+    let mut out = Vec::new();
+    let mut rest = s;
+    while rest.len() >= 4 {
+        let v = u16::from_str_radix(&rest[..4], 16).unwrap();
+        rest = &rest[4..];
+        let mut n = 1;
+        if let Some(r) = rest.strip_prefix(':') {
+            let end = r.find(';').unwrap();
+            n = r[..end].parse().unwrap();
+            rest = &r[end + 1..];
+        }
+        out.extend(std::iter::repeat_n(v, n));
+    }
+    assert!(rest.is_empty(), "{rest}");
+    out
+}
+
+/// Per pixel, every change the report's history files list: (command, before, after).
+fn report_history(dir: &Path) -> std::collections::HashMap<usize, Vec<(usize, u16, u16)>> {
+    let mut all = std::collections::HashMap::new();
+    for e in std::fs::read_dir(dir.join("data/hist")).unwrap() {
+        let text = std::fs::read_to_string(e.unwrap().path()).unwrap();
+        let inner = text
+            .strip_prefix("INSPECT.hist(")
+            .and_then(|t| t.strip_suffix(");\n"))
+            .unwrap();
+        let v: Value = serde_json::from_str(inner).unwrap();
+        let tile = v[0].as_u64().unwrap() as usize;
+        let (tx, ty) = (tile % 16 * 64, tile / 16 * 64);
+        let mut now = history_values(v[1].as_str().unwrap());
+        assert_eq!(now.len(), 64 * 64);
+        for rec in v[2].as_array().unwrap() {
+            let (cmd, y, x) = (
+                rec[0].as_u64().unwrap() as usize,
+                rec[1].as_u64().unwrap() as usize,
+                rec[2].as_u64().unwrap() as usize,
+            );
+            for (k, after) in history_values(rec[3].as_str().unwrap())
+                .into_iter()
+                .enumerate()
+            {
+                assert!(x + k >= tx && x + k < tx + 64 && y >= ty && y < ty + 64);
+                let t = (y - ty) * 64 + x + k - tx;
+                let before = now[t];
+                assert_ne!(before, after, "a change changes the pixel");
+                now[t] = after;
+                all.entry(y * 1024 + x + k)
+                    .or_insert_with(Vec::new)
+                    .push((cmd, before, after));
+            }
+        }
+    }
+    all
+}
+
+/// The pixel history of every pixel agrees with a line-by-line replay: the same changes,
+/// the same values before and after, each by the command holding the replay's line.
+fn check_history(text: &str, rows: &[Value], dir: &Path) {
+    let commands = command_stream::parse(text).unwrap();
+    let mut gpu = Gpu::new();
+    let mut want: std::collections::HashMap<usize, Vec<(usize, u16, u16)>> = Default::default();
+    for c in &commands {
+        let before = gpu.vram().as_slice().to_vec();
+        match c.port {
+            Port::Gp0 => gpu.gp0_words(&c.words),
+            Port::Gp1 => c.words.iter().for_each(|&w| gpu.gp1(w)),
+        }
+        for (i, (&a, &b)) in before.iter().zip(gpu.vram().as_slice()).enumerate() {
+            if a != b {
+                want.entry(i).or_default().push((c.line, a, b));
+            }
+        }
+    }
+    let got = report_history(dir);
+    assert_eq!(got.len(), want.len(), "pixels with a history");
+    for (i, w) in &want {
+        let g = &got[i];
+        assert_eq!(g.len(), w.len(), "pixel {i}: {g:?} vs {w:?}");
+        for (&(cmd, b, a), &(line, wb, wa)) in g.iter().zip(w) {
+            assert_eq!((b, a), (wb, wa), "pixel {i}, line {line}");
+            let r = &rows[cmd];
+            let (l0, l1) = (r["line"].as_u64().unwrap(), r["last"].as_u64().unwrap());
+            assert!(
+                (l0..=l1).contains(&(line as u64)),
+                "pixel {i}: line {line} vs {l0}-{l1}"
+            );
+        }
+    }
+    // Some pixel was written more than once, so before values other than the initial are checked.
+    assert!(want.values().any(|w| w.len() >= 2));
+}
+
 #[test]
 fn hardware_fixtures_small() {
     for name in ["quad.gpu", "triangle.gpu", "transparency.gpu", "lines.gpu"] {
@@ -236,6 +330,7 @@ fn hardware_fixtures_small() {
         check_lists_every_command(&text, &rows);
         check_pixel_accounting(&text, &s);
         check_against_line_by_line(&text, &rows, &s);
+        check_history(&text, &rows, &dir);
         assert!(dir.join("index.html").is_file());
         assert!(dir.join("img/final.png").is_file());
         assert!(s.draws > 0 && s.images > 0, "{name}");

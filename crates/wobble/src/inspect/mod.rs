@@ -1,7 +1,8 @@
 //! The draw-by-draw inspector: runs GPU commands one at a time and writes a self-contained
 //! report (one HTML page, script data files and PNG images; no server, no network) showing
 //! every command decoded by the `gpu` crate, what each draw changed in VRAM, the texture it
-//! sampled, and which command last changed each pixel (docs/inspect.md).
+//! sampled, which command last changed each pixel, and every change to each pixel
+//! (docs/inspect.md).
 //!
 //! Every command's names, fields and drop reasons come from [`gpu::decode`], typed; this
 //! module runs the commands, compares VRAM before and after each, writes the decoded values
@@ -23,6 +24,7 @@ use crate::vram_image::{self, Expand};
 
 mod base64_lite;
 mod frame;
+mod history;
 mod text;
 
 pub use frame::write_frame_report;
@@ -367,6 +369,7 @@ pub fn write_report_with_progress(
         written: HashMap::new(),
         max: options.max_textures,
     };
+    let mut history = history::History::new(out)?;
     let mut tracer = Tracer::new(commands);
     let mut rows: Vec<Value> = Vec::with_capacity(CHUNK);
     let mut classes = String::new();
@@ -393,6 +396,7 @@ pub fn write_report_with_progress(
             &mut summary,
             &mut textures,
             &mut before,
+            &mut history,
             origins,
         )?;
         if rows.is_empty() {
@@ -425,6 +429,7 @@ pub fn write_report_with_progress(
     let gpu_total: u64 = summary.gpu_cycles.iter().sum();
     let cpu_total = (gpu_total * den).div_ceil(num);
     summary.cpu_cycles = cpu_total;
+    let hist_tiles = history.finish()?;
     summary.final_vram = gpu.vram().as_slice().to_vec();
 
     let final_img = vram_image::vram_image(&summary.final_vram, Expand::Replicate);
@@ -467,6 +472,8 @@ pub fn write_report_with_progress(
         "lineCycles": line_cycles,
         "times": times,
         "display": display,
+        "histTiles": hist_tiles,
+        "histTile": history::TILE,
     });
     write_file(
         &out.join("data/index.js"),
@@ -503,6 +510,7 @@ fn run_one(
     summary: &mut InspectSummary,
     textures: &mut TextureViews,
     before: &mut Vec<u16>,
+    history: &mut history::History,
     origins: Option<&HashMap<usize, Origin>>,
 ) -> Result<Value, String> {
     let d = &cmd.decoded;
@@ -578,12 +586,23 @@ fn run_one(
         let vram = gpu.vram().as_slice();
         let w = b.width();
         let mut changed_bounds: Option<PixelBounds> = None;
+        // The run of changed pixels being collected for the history: its column and values.
+        let mut run: (usize, Vec<u16>) = (0, Vec::new());
         for (r, y) in (b.top as usize..=b.bottom as usize).enumerate() {
             let row = y * VRAM_WIDTH;
             for x in b.left as usize..=b.right as usize {
                 let i = row + x;
                 let old = before.get(r * w + (x - b.left as usize)).copied();
-                if vram.get(i).copied() != old {
+                let now = vram.get(i).copied();
+                if !run.1.is_empty() && (now == old || x % history::TILE == 0) {
+                    history.run(index, y, run.0, &run.1, &summary.initial)?;
+                    run.1.clear();
+                }
+                if now != old {
+                    if run.1.is_empty() {
+                        run.0 = x;
+                    }
+                    run.1.push(now.unwrap_or(0));
                     changed += 1;
                     if let Some(slot) = summary.writers.get_mut(i) {
                         *slot = index as u32 + 1;
@@ -604,6 +623,10 @@ fn run_one(
                         },
                     });
                 }
+            }
+            if !run.1.is_empty() {
+                history.run(index, y, run.0, &run.1, &summary.initial)?;
+                run.1.clear();
             }
         }
         if let Some(cb) = &changed_bounds {

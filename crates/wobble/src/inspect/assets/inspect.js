@@ -5,6 +5,9 @@ var INSPECT = (function () {
   var PAGE = 100;
   var idx = null, writers = null, writersB64 = null, readyMs = -1, chunks = {}, pending = {}, faces = null;
   var vram = null, vramB64 = null, zoom = 0;
+  // Pixel history tiles as loaded (data/hist/tile-TTT.js), the last history shown and the
+  // number of pixels the changed-pixel highlight shows.
+  var hist = {}, lastHistory = null, highlighted = -1;
   var filtered = [], page = 0, current = -1, facePage = 0, faceFilter = "all";
   function $(id) { return document.getElementById(id); }
   function esc(s) {
@@ -187,6 +190,7 @@ var INSPECT = (function () {
     drawPalette();
     if ($("view-tex")) $("view-tex").onclick = function () { viewTexture(r.tex); };
     placeOverlays();
+    paintChanges();
   }
   function scale() { return $("vram-canvas").clientWidth / 1024; }
   function place(el, x, y, w, h) {
@@ -340,6 +344,7 @@ var INSPECT = (function () {
     mark = p;
     $("readout").textContent = readout(x, y);
     placeOverlays();
+    showHistory(x, y);
     var w = writerAt(x, y);
     if (w < 0) { $("who").textContent = "pixel (" + x + ", " + y + "): writer table still loading"; return; }
     if (!w) { $("who").textContent = "pixel (" + x + ", " + y + "): not changed by any command"; return; }
@@ -347,6 +352,95 @@ var INSPECT = (function () {
       var r = row(w - 1);
       $("who").textContent = "pixel (" + x + ", " + y + "): last changed by command #" + (w - 1) + " (line " + (r ? r.line : "?") + ", " + (r ? r.name : "") + ")";
       select(w - 1);
+    });
+  }
+  // Values of a history string: 4 hex digits each, "hhhh:N;" for N copies.
+  function decodeValues(str) {
+    var out = [], re = /([0-9a-f]{4})(?::(\d+);)?/g, m;
+    while ((m = re.exec(str))) { var v = parseInt(m[1], 16), n = m[2] ? +m[2] : 1; while (n--) out.push(v); }
+    return out;
+  }
+  function hasTile(t) { return (idx.histTiles || []).indexOf(t) >= 0; }
+  // Load history tiles `list` (those that have a file), then call done.
+  function needTiles(list, done) {
+    var want = list.filter(function (t) { return hasTile(t) && !hist[t]; }), left = want.length;
+    if (!left) { done(); return; }
+    want.forEach(function (t) {
+      loadScript("data/hist/tile-" + ("00" + t).slice(-3) + ".js", function () { if (--left === 0) done(); });
+    });
+  }
+  function tileOf(x, y) { var T = idx.histTile; return Math.floor(y / T) * (1024 / T) + Math.floor(x / T); }
+  // Every change to pixel (x, y): {i: command, before, after}, in command order.
+  function pixelHistory(x, y, done) {
+    var t = tileOf(x, y), T = idx.histTile;
+    needTiles([t], function () {
+      var h = hist[t], out = [];
+      if (!h) { done(out); return; }
+      if (!h.initv) h.initv = decodeValues(h.init);
+      var v = h.initv[(y % T) * T + (x % T)];
+      h.recs.forEach(function (r) {
+        if (r[1] !== y || x < r[2] || x >= r[2] + T) return;
+        if (!r.v) r.v = decodeValues(r[3]);
+        if (x - r[2] >= r.v.length) return;
+        var now = r.v[x - r[2]];
+        out.push({ i: r[0], before: v, after: now });
+        v = now;
+      });
+      done(out);
+    });
+  }
+  function swatch(v) {
+    var c = rgb8(v);
+    return '<span class="sw" style="background:rgb(' + c.join(",") + ')"></span>' + hex4(v) + "h";
+  }
+  function showHistory(x, y) {
+    $("history").innerHTML = "";
+    pixelHistory(x, y, function (list) {
+      need(list.map(function (e) { return e.i; }), function () {
+        lastHistory = list.map(function (e) {
+          var r = row(e.i);
+          return { i: e.i, line: r ? r.line : 0, last: r ? r.last : 0, before: e.before, after: e.after };
+        });
+        var h = ['<div class="cap">pixel (' + x + ", " + y + "): " + list.length + " change" + (list.length === 1 ? "" : "s") +
+          '</div><table id="history-rows"><tr><th>#</th><th>line</th><th>command</th><th>before</th><th>after</th></tr>'];
+        list.forEach(function (e) {
+          var r = row(e.i);
+          h.push('<tr><td><a href="#cmd=' + e.i + '">' + e.i + "</a></td><td>" + (r ? r.line : "") + "</td><td>" + (r ? esc(r.name) : "") +
+            "</td><td>" + swatch(e.before) + "</td><td>" + swatch(e.after) + "</td></tr>");
+        });
+        $("history").innerHTML = h.join("") + "</table>";
+      });
+    });
+  }
+  // The selected command's changed pixels, magenta on the VRAM view.
+  function paintChanges() {
+    var cv = $("changes-canvas"), ctx = cv.getContext("2d"), i = current;
+    ctx.clearRect(0, 0, 1024, 512);
+    highlighted = -1;
+    var r = i >= 0 ? row(i) : null;
+    if (!r || !$("show-changes").checked) return;
+    if (!r.changed) { highlighted = 0; return; }
+    var tiles = [], T = idx.histTile, w = r.writes;
+    for (var t = 0; t < (1024 / T) * (512 / T); t++) {
+      var tx = (t % (1024 / T)) * T, ty = Math.floor(t / (1024 / T)) * T;
+      if (!w || (tx <= w[2] && tx + T > w[0] && ty <= w[3] && ty + T > w[1])) tiles.push(t);
+    }
+    needTiles(tiles, function () {
+      if (current !== i) return;
+      var im = ctx.createImageData(1024, 512), d = im.data, n = 0;
+      tiles.forEach(function (t) {
+        if (!hist[t]) return;
+        hist[t].recs.forEach(function (rec) {
+          if (rec[0] !== i) return;
+          if (!rec.v) rec.v = decodeValues(rec[3]);
+          for (var k = 0; k < rec.v.length; k++) {
+            var o = 4 * (rec[1] * 1024 + rec[2] + k);
+            d[o] = 255; d[o + 1] = 0; d[o + 2] = 255; d[o + 3] = 255; n++;
+          }
+        });
+      });
+      ctx.putImageData(im, 0, 0);
+      highlighted = n;
     });
   }
   function drawVram() {
@@ -370,6 +464,7 @@ var INSPECT = (function () {
     zoom = z;
     var k = z || (sc.clientWidth - 2) / 1024;
     cv.style.width = 1024 * k + "px"; cv.style.height = 512 * k + "px";
+    $("changes-canvas").style.width = cv.style.width; $("changes-canvas").style.height = cv.style.height;
     sc.scrollLeft = fx * k - sx; sc.scrollTop = fy * k - sy;
     var sel = $("zoom"), opt = z ? String(z) : "fit";
     if (Array.prototype.some.call(sel.options, function (o) { return o.value === opt; })) sel.value = opt;
@@ -379,6 +474,7 @@ var INSPECT = (function () {
     var sc = $("vram-scroll"), drag = null;
     $("zoom").onchange = function () { var v = $("zoom").value; setZoom(v === "fit" ? 0 : +v); };
     $("show-display").onchange = placeOverlays;
+    $("show-changes").onchange = paintChanges;
     $("view-form").onsubmit = showView;
     $("view-close").onclick = function () { $("view-out").hidden = true; };
     sc.addEventListener("wheel", function (e) {
@@ -461,6 +557,7 @@ var INSPECT = (function () {
     chunk: function (n, rows) { chunks[n] = rows; },
     faces: function (f) { faces = f; },
     writers: function (b64) { writersB64 = b64; },
+    hist: function (d) { hist[d[0]] = { init: d[1], recs: d[2] }; },
     start: function () {
       if (!idx) { $("detail").textContent = "data/index.js is missing"; return; }
       $("title").textContent = idx.title;
@@ -498,6 +595,15 @@ var INSPECT = (function () {
     // For tests: the RGB of texel (u, v) in the VRAM-as-texture view.
     viewPixel: function (u, v) { var d = $("view-canvas").getContext("2d").getImageData(u, v, 1, 1).data; return [d[0], d[1], d[2]]; },
     current: function () { return current; },
+    // For tests: the history shown for the last clicked pixel ({i, line, last, before,
+    // after} per change), null before.
+    history: function () { return lastHistory; },
+    // For tests: call cb with the changes of pixel (x, y) as [command, before, after].
+    historyOf: function (x, y, cb) { pixelHistory(x, y, function (l) { cb(l.map(function (e) { return [e.i, e.before, e.after]; })); }); },
+    // For tests: pixels the changed-pixel highlight shows (-1 while loading or off), and
+    // whether VRAM pixel (x, y) is among them.
+    highlighted: function () { return highlighted; },
+    highlightAt: function (x, y) { return $("changes-canvas").getContext("2d").getImageData(x, y, 1, 1).data[3] > 0; },
     // For tests: milliseconds from navigation to the first rows shown, -1 before.
     readyMs: function () { return readyMs; }
   };
