@@ -18,6 +18,7 @@ mod input;
 mod inspect;
 mod output;
 mod render;
+mod zoom;
 
 use output::FormatArg;
 

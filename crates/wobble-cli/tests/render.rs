@@ -226,3 +226,64 @@ fn advertised_sizes_render() {
         }
     }
 }
+
+/// `--zoom`: each output pixel of a region is the unzoomed frame's pixel at the region's
+/// corner plus the output position divided by the scale; regions stack with 4 rows between
+/// them and 4 black columns at the right; a region outside the screen is refused.
+#[test]
+fn zoom_crops_and_scales_the_frame() {
+    let plain = write("plain.png", "");
+    let zoomed = write("zoomed.png", "");
+    let run = |extra: &[&str], out: &PathBuf| {
+        let mut args = vec!["render", "-o", out.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        Command::new(env!("CARGO_BIN_EXE_wobble"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let o = run(&[], &plain);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = run(
+        &["--zoom", "100,60,20,10", "--zoom", "300,230,5,10"],
+        &zoomed,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let plain = image::open(&plain).unwrap().to_rgb8();
+    let zoomed = image::open(&zoomed).unwrap().to_rgb8();
+    assert_eq!(plain.dimensions(), (320, 240));
+    // Widest region 20 * 3 + 4; heights 10 * 3 + 4 + 10 * 3.
+    assert_eq!(zoomed.dimensions(), (64, 64));
+    let mut distinct = std::collections::HashSet::new();
+    for (x0, y0, w, h, top) in [(100, 60, 20, 10, 0), (300, 230, 5, 10, 34)] {
+        for y in 0..h * 3 {
+            for x in 0..w * 3 {
+                let want = plain.get_pixel(x0 + x / 3, y0 + y / 3);
+                distinct.insert(want.0);
+                assert_eq!(zoomed.get_pixel(x, top + y), want, "({x}, {})", top + y);
+            }
+        }
+    }
+    // The regions are not one flat colour (the check would not see a shifted crop).
+    assert!(distinct.len() > 4, "{distinct:?}");
+    for y in 30..34 {
+        assert_eq!(zoomed.get_pixel(0, y).0, [0, 0, 0]);
+    }
+    for x in 60..64 {
+        assert_eq!(zoomed.get_pixel(x, 0).0, [0, 0, 0]);
+    }
+    let out = write("never.png", "");
+    for (bad, says) in [
+        ("310,0,11,10", "not inside the 320x240 screen"),
+        ("0,235,10,6", "rows 235..241"),
+        ("1,2,3", "expected X,Y,W,H"),
+        ("1,2,0,4", "expected X,Y,W,H"),
+    ] {
+        let o = run(&["--zoom", bad], &out);
+        assert!(!o.status.success(), "{bad}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(says), "{bad}: {err}");
+    }
+    let o = run(&["--zoom", "0,0,8,8", "--zoom-scale", "9"], &out);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--zoom-scale must be 1..=8"));
+}
