@@ -148,6 +148,11 @@ impl Gpu {
         }
     }
 
+    /// GP1(09h) bit 0: whether GP0(E1h) bit 11 may disable textures (docs/hardware/gpu.md §2).
+    pub fn texture_disable_allowed(&self) -> bool {
+        self.texture_disable_allowed
+    }
+
     /// GP1(00h): reset the command buffer, IRQ, display and drawing state; VRAM is kept.
     /// Drawing in progress is abandoned (docs/emulator.md, "Drawing time, FIFO and DMA").
     fn reset(&mut self) {

@@ -168,9 +168,31 @@ pub(crate) fn walk_nodes<M: ListMemory>(
     }
 }
 
+/// The walk [`Gpu::dma_linked_list`] makes (docs/hardware/dma.md §5, §6): each node's data
+/// words to `send` in order, at most [`LINKED_LIST_WORD_BUDGET`] header and data words read.
+/// Returns how it ended, the nodes, the data words sent and the words read.
+pub(crate) fn linked_list_walk(
+    ram: &[u8],
+    start: u32,
+    mut send: impl FnMut(u32),
+) -> (WalkEnd, usize, u32, u32) {
+    let mem = ByteRam(ram);
+    let mut words = 0u32;
+    let mut read = 0u32;
+    let (end, nodes) = walk_nodes(&mem, start, usize::MAX, |addr, count| {
+        for i in 1..=count {
+            send(mem.word(mem.offset(addr, i)).unwrap_or(0));
+        }
+        words += count;
+        read += 1 + count;
+        read < LINKED_LIST_WORD_BUDGET
+    });
+    (end, nodes, words, read)
+}
+
 /// CPU cycles a DMA moving `words` words takes: one per word plus one per 16 for DRAM row
 /// changes (110h clocks per 100h words, docs/hardware/dma.md §10).
-fn transfer_cycles(words: u32) -> u32 {
+pub(crate) fn transfer_cycles(words: u32) -> u32 {
     words.saturating_add(words / 16)
 }
 

@@ -39,6 +39,7 @@ pub mod decode;
 mod display;
 mod dma;
 mod drawing;
+pub mod dump;
 pub mod encode;
 mod frame;
 mod gp0;
