@@ -6,12 +6,14 @@
 //! - [`reference`](mod@reference): the f64 reference renderer the PS1 output is measured against;
 //! - [`trade`]: the accuracy/cost trade report;
 //! - [`gte_vectors`]: replay of GTE test vectors;
+//! - [`gpu_dump`]: GPU dumps (`.psxgpu`) and command streams replayed frame by frame;
 //! - [`vram_image`]: VRAM to images and the raw VRAM file format;
 //! - [`inspect`]: the draw-by-draw report of a command stream or a rendered frame.
 
 #![forbid(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
+pub mod gpu_dump;
 pub mod gte_vectors;
 pub mod inspect;
 pub mod pipeline;

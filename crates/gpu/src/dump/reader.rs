@@ -126,6 +126,18 @@ impl<'a> Reader<'a> {
         })
     }
 
+    /// Stand before the first packet of `data`, whose magic `header` is (from
+    /// [`Header::parse`] of the same data). Another header reads whatever words lie at its
+    /// length.
+    pub fn with_header(data: &'a [u8], header: Header) -> Reader<'a> {
+        Reader {
+            data,
+            header,
+            pos: header.len.min(data.len()),
+            failed: false,
+        }
+    }
+
     /// The magic header.
     pub fn header(&self) -> Header {
         self.header

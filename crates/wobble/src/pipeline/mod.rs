@@ -22,6 +22,7 @@ mod ot_stage;
 mod polygon;
 mod precise;
 mod projection;
+mod record;
 mod stats;
 pub mod tessellate;
 #[cfg(test)]
