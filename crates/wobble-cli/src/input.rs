@@ -2,44 +2,12 @@
 //! file of the wrong kind, the format the command expected; and the default output name
 //! derived from an input.
 
-use gpu::command_stream::{self, StreamCommand};
 use std::path::{Path, PathBuf};
-
-/// What a command stream is, for messages.
-pub const COMMAND_STREAM: &str =
-    "a GPU command stream (text, one `gp0`/`gp1` command a line; docs/formats.md)";
 
 /// The text of `path`; a binary file (not UTF-8) is reported as not being `what`.
 pub fn read_text(path: &Path, what: &str) -> Result<String, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    String::from_utf8(bytes).map_err(|e| {
-        format!(
-            "{}: not {what}: the file is binary (byte {} is not UTF-8 text)",
-            path.display(),
-            e.utf8_error().valid_up_to()
-        )
-    })
-}
-
-/// Read and parse a command stream; errors name the file and, for a malformed stream, the
-/// line.
-pub fn read_command_stream(path: &Path) -> Result<Vec<StreamCommand>, String> {
-    let text = read_text(path, COMMAND_STREAM)?;
-    command_stream::parse(&text).map_err(|e| {
-        let timed = e.message.contains("timing directive");
-        let hint = if timed {
-            "; `wobble replay --timing` reads timed streams"
-        } else {
-            ""
-        };
-        format!("{}: {e}{hint}", path.display())
-    })
-}
-
-/// Read a raw VRAM file (docs/formats.md, "Raw VRAM").
-pub fn read_raw_vram(path: &Path) -> Result<Vec<u16>, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
-    wobble::vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", path.display()))
+    String::from_utf8(bytes).map_err(|e| crate::gpu_input::binary_error(path, e.as_bytes(), what))
 }
 
 /// The default image output of a command reading `input`: its file name with the last

@@ -1,23 +1,27 @@
-//! `wobble`: render scenes the PS1 way, replay GTE vectors and GPU command streams, inspect a
-//! stream draw by draw, dump VRAM, and measure the accuracy trade.
+//! `wobble`: render scenes the PS1 way, replay GTE vectors, GPU command streams and GPU dumps,
+//! inspect them draw by draw, convert them, dump VRAM, and measure the accuracy trade.
 
 #![forbid(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 use clap::{Parser, Subcommand, ValueEnum};
-use gpu::{CPU_CLOCK_HZ, DisplayArea, Gpu, VideoStandard, command_stream};
-use std::io::{IsTerminal, Write};
+use gpu::DisplayArea;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use wobble::vram_image::{self, Expand};
 
 mod compare;
+mod compress;
+mod convert;
 mod counts;
 mod gif;
+mod gpu_input;
 mod input;
 mod inspect;
 mod output;
 mod render;
+mod replay;
 mod zoom;
 
 use output::FormatArg;
@@ -27,8 +31,8 @@ use output::FormatArg;
     name = "wobble",
     version,
     about = "PS1 GTE + GPU emulation: render a scene, gte replay test vectors, replay a GPU \
-             command stream, inspect one draw by draw, dump raw VRAM, trade: measure the \
-             accuracy trade",
+             command stream or dump, inspect one draw by draw, convert streams and dumps, \
+             dump VRAM, trade: measure the accuracy trade",
     after_help = "Outputs: `-o -` writes to standard output (with --format for images); a \
                   FIFO or device is written through, a regular file is replaced only when \
                   complete (docs/formats.md, \"Output files\")."
@@ -48,12 +52,17 @@ enum Command {
         #[command(subcommand)]
         command: GteCommand,
     },
-    /// Run a GP0/GP1 command stream on a fresh GPU and write VRAM as an image and/or raw.
-    Replay(ReplayArgs),
-    /// Step through a GP0/GP1 command stream draw by draw: writes an HTML report
-    /// (docs/inspect.md).
+    /// Run a GP0/GP1 command stream or a GPU dump (.psxgpu) on a fresh GPU frame by frame;
+    /// write VRAM or the displayed frames (an image, an animated GIF) and/or raw VRAM.
+    Replay(replay::ReplayArgs),
+    /// Step through a command stream, or one frame of a GPU dump, draw by draw: writes an
+    /// HTML report (docs/inspect.md).
     Inspect(inspect::InspectArgs),
-    /// Convert a raw VRAM file to an image: whole VRAM, a display area, or a texture page.
+    /// Convert between command-stream text (.gpu) and GPU dumps (.psxgpu, .psxgpu.zst,
+    /// .psxgpu.xz) in either dialect.
+    Convert(convert::ConvertArgs),
+    /// Convert raw VRAM (or the VRAM a command stream or GPU dump leaves) to an image: whole
+    /// VRAM, a display area, or a texture page.
     Dump(DumpArgs),
     /// Measure what each accuracy knob costs in time and in error against an f64 reference
     /// renderer; writes DIR/trade.md and images under DIR/trade/.
@@ -91,7 +100,7 @@ enum GteCommand {
     },
 }
 
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 enum Region {
     /// The whole 1024x512 VRAM.
     Vram,
@@ -100,7 +109,7 @@ enum Region {
 }
 
 /// 5-bit to 8-bit conversion, as `--expand` takes it.
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 enum ExpandArg {
     /// `c << 3 | c >> 2`: 31 maps to 255.
     Replicate,
@@ -119,56 +128,9 @@ impl From<ExpandArg> for Expand {
 }
 
 #[derive(clap::Args)]
-struct ReplayArgs {
-    /// Command stream (.gpu text, docs/formats.md).
-    stream: PathBuf,
-    /// Image output, format by extension or --format; `-` is standard output (default: the
-    /// stream's file name with .png, in the current directory).
-    #[arg(short, long)]
-    output: Option<PathBuf>,
-    /// Image format of -o (needed for `-o -`).
-    #[arg(long, value_enum)]
-    format: Option<FormatArg>,
-    /// Also write the raw VRAM (1024*512 little-endian u16); `-` is standard output.
-    #[arg(long)]
-    raw: Option<PathBuf>,
-    /// What to write as the image.
-    #[arg(long, value_enum, default_value_t = Region::Vram)]
-    region: Region,
-    /// 5-bit to 8-bit conversion (`shift` reproduces the fixtures' console captures).
-    #[arg(long, value_enum, default_value_t = ExpandArg::Replicate)]
-    expand: ExpandArg,
-    /// Also print the time the stream takes on a console: CPU cycles, hblanks (what timer 1
-    /// counts) and milliseconds until the GPU has finished, and each `report` line. Accepts
-    /// timed streams (docs/formats.md, "Timed streams").
-    #[arg(long)]
-    timing: bool,
-    /// The console whose clocks time the stream.
-    #[arg(long, value_enum, default_value_t = ConsoleArg::Ntsc, requires = "timing")]
-    console: ConsoleArg,
-}
-
-/// A console region, as `--console` takes it.
-#[derive(Clone, Copy, ValueEnum, PartialEq, Eq)]
-enum ConsoleArg {
-    /// NTSC console: GPU clock 11/7 of the CPU clock.
-    Ntsc,
-    /// PAL console: GPU clock 53.203425 MHz.
-    Pal,
-}
-
-impl From<ConsoleArg> for VideoStandard {
-    fn from(c: ConsoleArg) -> VideoStandard {
-        match c {
-            ConsoleArg::Ntsc => VideoStandard::Ntsc,
-            ConsoleArg::Pal => VideoStandard::Pal,
-        }
-    }
-}
-
-#[derive(clap::Args)]
 struct DumpArgs {
-    /// Raw VRAM file (1024*512 little-endian u16).
+    /// Raw VRAM file (1024*512 little-endian u16), or a command stream or GPU dump whose
+    /// VRAM is taken after replaying it (to --frame N, or to its end).
     raw: PathBuf,
     /// Image output, format by extension or --format; `-` is standard output (default: the
     /// raw file's name with .png, in the current directory: x.vram.bin -> x.png).
@@ -181,9 +143,13 @@ struct DumpArgs {
     #[arg(long, value_enum, conflicts_with = "texpage")]
     region: Option<Region>,
     /// Display area X,Y,WxH or X,Y,WxH,24 for 24-bit colour (default 0,0,320x240 with
-    /// --region display); implies --region display.
+    /// --region display, or for a stream or dump the area its GP1 state selects); implies
+    /// --region display.
     #[arg(long, conflicts_with = "texpage")]
     display: Option<String>,
+    /// For a command stream or GPU dump: the VRAM at the end of frame N (0-based).
+    #[arg(long)]
+    frame: Option<usize>,
     /// View a texture page at VRAM X,Y (X multiple of 64, Y 0 or 256 on hardware).
     #[arg(long)]
     texpage: Option<String>,
@@ -270,117 +236,46 @@ fn gte_replay(file: &Path, emit: bool) -> Result<bool> {
     Ok(outcome.failed == 0)
 }
 
-/// What a stream left unfinished, for the end-of-stream warning.
-fn unfinished_text(pending: gpu::PendingInput) -> String {
-    match pending {
-        gpu::PendingInput::Packet {
-            command,
-            received,
-            expected,
-        } => format!("mid-packet: command {command:08X} has {received} of its {expected} words"),
-        gpu::PendingInput::Transfer { remaining_words } => {
-            format!("mid-transfer: a CPU-to-VRAM transfer still expects {remaining_words} words")
+/// The VRAM `wobble dump` converts: a raw VRAM file, or what a command stream or GPU dump
+/// leaves at the end of frame `frame` (or its end), with the display area it selects.
+fn dump_input(path: &Path, frame: Option<usize>) -> Result<(Vec<u16>, Option<DisplayArea>)> {
+    let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // Raw VRAM: neither a dump (compressed or not) nor text, or exactly VRAM's size.
+    let text = !bytes.contains(&0) && std::str::from_utf8(&bytes).is_ok();
+    let raw = compress::Compression::sniff(&bytes) == compress::Compression::None
+        && !bytes.starts_with(gpu::dump::MAGIC_PREFIX)
+        && (bytes.len() == gpu::VRAM_LEN * 2 || !text);
+    if raw {
+        if frame.is_some() {
+            return Err("--frame applies to a command stream or GPU dump, not raw VRAM".into());
         }
-        gpu::PendingInput::Polyline => {
-            "inside a polyline with no terminator word (5xxx5xxxh)".to_string()
-        }
+        let vram =
+            vram_image::raw_from_bytes(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+        return Ok((vram, None));
     }
-}
-
-/// Milliseconds in `cycles` CPU cycles.
-fn millis(cycles: u64) -> f64 {
-    cycles as f64 * 1000.0 / CPU_CLOCK_HZ as f64
-}
-
-/// What `replay --timing` prints: the GPU time of the whole stream, then each report.
-fn timing_text(t: &gpu::bus::TimedRun, console: ConsoleArg) -> String {
-    let console = match console {
-        ConsoleArg::Ntsc => "NTSC",
-        ConsoleArg::Pal => "PAL",
-    };
-    let mut s = format!(
-        "GPU time: {} CPU cycles, {} hblanks, {:.3} ms ({console} console)\n\
-         stream: {} CPU cycles, {} of them waiting on the GPU\n",
-        t.gpu_cycles,
-        t.hblanks,
-        millis(t.gpu_cycles),
-        t.stream_cycles,
-        t.stall_cycles,
-    );
-    for r in &t.reports {
-        s += &format!(
-            "report {:?} (line {}): {} hblanks, {} CPU cycles, {:.3} ms\n",
-            r.name,
-            r.line,
-            r.hblanks,
-            r.cycles,
-            millis(r.cycles)
-        );
-    }
-    s
-}
-
-fn replay(args: &ReplayArgs) -> Result<()> {
-    let path = args
-        .output
-        .clone()
-        .unwrap_or_else(|| input::default_output(&args.stream));
-    let format = output::image_format(&path, args.format)?;
-    input::not_the_input(&path, &args.stream)?;
-    if let Some(raw) = &args.raw {
-        if raw == &path && output::is_file_target(raw) {
+    drop(bytes);
+    let loaded = gpu_input::load(path)?;
+    let name = path.display().to_string();
+    let summary = loaded
+        .dump
+        .summary(&mut |_| {})
+        .map_err(|e| format!("{name}: {e}"))?;
+    let mut player = wobble::gpu_dump::Player::new(&loaded.dump, summary.video_standard());
+    let total = summary.frames.len();
+    let end = match frame {
+        Some(n) if n >= total => {
             return Err(format!(
-                "{}: given both as the image (-o) and the raw VRAM (--raw)",
-                raw.display()
+                "{name}: frame {n} does not exist: it has {total} frame(s)"
             ));
         }
-        input::not_the_input(raw, &args.stream)?;
-    }
-    let image_out = output::open(&path)?;
-    let raw_out = args.raw.as_deref().map(output::open).transpose()?;
-    let mut gpu = Gpu::with_standard(args.console.into());
-    let unfinished = if args.timing {
-        let text = input::read_text(&args.stream, input::COMMAND_STREAM)?;
-        let in_file = |e: command_stream::StreamError| format!("{}: {e}", args.stream.display());
-        let stream = gpu::bus::parse(&text).map_err(in_file)?;
-        let timed = gpu::bus::run(&mut gpu, &stream).map_err(in_file)?;
-        let report = timing_text(&timed, args.console);
-        // Standard output may carry the image or the raw VRAM: the times then go to stderr.
-        if output::is_stdout(&path) || args.raw.as_deref().is_some_and(output::is_stdout) {
-            eprint!("{report}");
-        } else {
-            print!("{report}");
-        }
-        timed.unfinished
-    } else {
-        let commands = input::read_command_stream(&args.stream)?;
-        command_stream::run(&mut gpu, &commands).unfinished
+        Some(n) => n + 1,
+        None => total,
     };
-    if let Some(u) = unfinished {
-        eprintln!(
-            "warning: {}: the stream ends {} (started at line {})",
-            args.stream.display(),
-            unfinished_text(u.pending),
-            u.line
-        );
-    }
-    let vram = gpu.vram().as_slice();
-    let expand = Expand::from(args.expand);
-    let img = match args.region {
-        Region::Vram => vram_image::vram_image(vram, expand),
-        Region::Display => vram_image::display_image(vram, gpu.display_area(), expand),
-    };
-    if let Some(mut raw) = raw_out {
-        raw.write_all(&vram_image::raw_to_bytes(vram))
-            .map_err(|e| format!("{}: {e}", raw.name()))?;
-        let name = raw.name().to_string();
-        raw.commit()?;
-        eprintln!("wrote {name}");
-    }
-    let name = image_out.name().to_string();
-    output::write_image(img, image_out, format)?;
-    eprintln!("wrote {name}");
-    Ok(())
+    let mut progress = replay::FrameProgress::new(end as u64, "replayed");
+    player.skip_to(end, &mut |_| progress.inc())?;
+    progress.finish();
+    let gpu = player.into_gpu();
+    Ok((gpu.vram().as_slice().to_vec(), Some(gpu.display_area())))
 }
 
 fn dump(args: &DumpArgs) -> Result<()> {
@@ -398,11 +293,10 @@ fn dump(args: &DumpArgs) -> Result<()> {
         (None, Some(_)) => Region::Display,
         (None, None) => Region::Vram,
     };
-    let area = match region {
-        Region::Display => Some(parse_display(
-            args.display.as_deref().unwrap_or("0,0,320x240"),
-        )?),
-        Region::Vram => None,
+    let area = match (region, &args.display) {
+        (Region::Display, Some(text)) => Some(parse_display(text)?),
+        (Region::Display, None) => None,
+        (Region::Vram, _) => None,
     };
     let page = match &args.texpage {
         Some(page) => {
@@ -420,7 +314,13 @@ fn dump(args: &DumpArgs) -> Result<()> {
     };
     input::not_the_input(&path, &args.raw)?;
     let out = output::open(&path)?;
-    let vram = input::read_raw_vram(&args.raw)?;
+    let (vram, shown) = dump_input(&args.raw, args.frame)?;
+    let area = match (region, area, shown) {
+        (Region::Display, Some(a), _) => Some(a),
+        (Region::Display, None, Some(a)) => Some(a),
+        (Region::Display, None, None) => Some(parse_display("0,0,320x240")?),
+        (Region::Vram, _, _) => None,
+    };
     let expand = Expand::from(args.expand);
     let name = out.name().to_string();
     if let Some((px, py, depth, clut)) = page {
@@ -532,7 +432,14 @@ fn main() -> ExitCode {
         Command::Gte {
             command: GteCommand::Replay { file, emit },
         } => gte_replay(file, *emit),
-        Command::Replay(args) => replay(args).map(|()| true),
+        Command::Replay(args) => replay::run(args).map(|summary| {
+            output::say(&summary);
+            true
+        }),
+        Command::Convert(args) => convert::run(args).map(|summary| {
+            output::say(&summary);
+            true
+        }),
         Command::Dump(args) => dump(args).map(|()| true),
         Command::Inspect(args) => inspect::run(args).map(|summary| {
             output::say(&summary);

@@ -8,7 +8,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
-use wobble::pipeline::{FrameStats, PipelineOptions, Renderer};
+use wobble::pipeline::{FrameStats, PipelineOptions, Renderer, TraceError};
 use wobble::reference;
 use wobble::scene::animation::Animation;
 use wobble::scene::default::default_animation;
@@ -99,6 +99,14 @@ pub struct RenderArgs {
     /// no image is written unless -o or --gif asks for one.
     #[arg(long)]
     pub inspect: Option<PathBuf>,
+    /// Record what the GPU receives as a GPU dump (.psxgpu, .psxgpu.zst or .psxgpu.xz):
+    /// the scene's VRAM and GPU state, then each frame's commands and a VSync
+    /// (docs/formats.md); `wobble replay` plays it back frame for frame.
+    #[arg(long, conflicts_with = "inspect")]
+    pub record: Option<PathBuf>,
+    /// Dialect of the --record dump (default: the spec's).
+    #[arg(long, value_enum, requires = "record")]
+    pub dialect: Option<crate::convert::DialectArg>,
 }
 
 /// The GTE divide, as `--divide` takes it (the scene's `[accuracy] divide`).
@@ -166,7 +174,15 @@ pub fn significant(v: f64) -> String {
 /// Run `wobble render`; returns the summary line printed at the end.
 pub fn run(args: &RenderArgs) -> Result<String, String> {
     let (mut scene, animation) = match &args.scene {
-        Some(path) => (Scene::load(path).map_err(|e| e.to_string())?, None),
+        Some(path) => {
+            if let Ok(bytes) = std::fs::read(path)
+                && std::str::from_utf8(&bytes).is_err()
+            {
+                let what = "a scene file (TOML, docs/formats.md)";
+                return Err(crate::gpu_input::binary_error(path, &bytes, what));
+            }
+            (Scene::load(path).map_err(|e| e.to_string())?, None)
+        }
         None => (Scene::default_scene(), Some(default_animation())),
     };
     let frames = args.frames.unwrap_or(match (&animation, args.compare) {
@@ -298,8 +314,43 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             frame_bytes as f64 / 1000.0
         );
     }
+    let record_file = match &args.record {
+        Some(path) => match crate::gpu_input::output_format(path)? {
+            crate::gpu_input::OutputFormat::Dump(_) => Some(output::open(path)?),
+            crate::gpu_input::OutputFormat::Text => {
+                return Err(format!(
+                    "{}: --record writes a GPU dump: name it .psxgpu, .psxgpu.zst or .psxgpu.xz",
+                    path.display()
+                ));
+            }
+        },
+        None => None,
+    };
     let base = scene.clone();
     let mut renderer = Renderer::new(scene, options).map_err(|e| e.to_string())?;
+    let comment = format!(
+        "wobble {} render of {}",
+        env!("CARGO_PKG_VERSION"),
+        args.scene.as_ref().map_or_else(
+            || "the built-in default scene".to_string(),
+            |p| p.display().to_string()
+        )
+    );
+    let mut recorder = match &args.record {
+        Some(_) => {
+            let info = gpu::dump::RecordInfo {
+                dialect: args.dialect.map_or(gpu::dump::Dialect::Spec, Into::into),
+                game_id: None,
+                comment: Some(&comment),
+            };
+            Some(
+                renderer
+                    .start_recording(Vec::new(), &info)
+                    .map_err(|e| e.to_string())?,
+            )
+        }
+        None => None,
+    };
     let plain_progress = frames > 1 && !std::io::stderr().is_terminal();
     let progress_step = (frames / 10).max(1);
     let progress = if frames > 1 {
@@ -349,7 +400,16 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
                 report_time += writing.elapsed();
                 stats
             }
-            _ => renderer.render_frame(frame),
+            _ => match recorder.as_mut() {
+                Some(rec) => renderer
+                    .render_frame_recorded(frame, rec)
+                    .map_err(|e| match e {
+                        TraceError::PrecisePath => "--record needs the hardware path: drop \
+                                                    --subpixel / --perspective-uv"
+                            .to_string(),
+                    })?,
+                None => renderer.render_frame(frame),
+            },
         };
         total.accumulate(&stats);
         let wanted =
@@ -407,6 +467,18 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
             count(frames as usize, "frame", "frames"),
             bytes as f64 / 1000.0,
             animation.fps
+        ));
+    }
+    if let (Some(rec), Some(file), Some(path)) = (recorder, record_file, &args.record) {
+        let bytes = rec
+            .finish()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let name = file.name().to_string();
+        let size = crate::gpu_input::write_dump(path, &bytes, file)?;
+        written.push(format!(
+            "{name} (GPU dump of {}, {:.1} KB)",
+            count(frames as usize, "frame", "frames"),
+            size as f64 / 1000.0
         ));
     }
     if let Some(dir) = png_dir {

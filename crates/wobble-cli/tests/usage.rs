@@ -68,7 +68,9 @@ fn top_level_help_names_every_command() {
     let commands = subcommands();
     assert_eq!(
         commands,
-        ["render", "gte", "replay", "inspect", "dump", "trade"]
+        [
+            "render", "gte", "replay", "inspect", "convert", "dump", "trade"
+        ]
     );
     let help = stdout(&wobble(&["--help"]));
     let about = help.lines().next().unwrap();
