@@ -169,20 +169,23 @@ pub(crate) fn walk_nodes<M: ListMemory>(
 }
 
 /// The walk [`Gpu::dma_linked_list`] makes (docs/hardware/dma.md §5, §6): each node's data
-/// words to `send` in order, at most [`LINKED_LIST_WORD_BUDGET`] header and data words read.
-/// Returns how it ended, the nodes, the data words sent and the words read.
+/// words (at most 255, the header's count field) to `send` as one slice, in order, at most
+/// [`LINKED_LIST_WORD_BUDGET`] header and data words read. Returns how it ended, the nodes,
+/// the data words sent and the words read.
 pub(crate) fn linked_list_walk(
     ram: &[u8],
     start: u32,
-    mut send: impl FnMut(u32),
+    mut send: impl FnMut(&[u32]),
 ) -> (WalkEnd, usize, u32, u32) {
     let mem = ByteRam(ram);
     let mut words = 0u32;
     let mut read = 0u32;
+    let mut node = [0u32; 255];
     let (end, nodes) = walk_nodes(&mem, start, usize::MAX, |addr, count| {
-        for i in 1..=count {
-            send(mem.word(mem.offset(addr, i)).unwrap_or(0));
+        for (i, slot) in (1..=count).zip(node.iter_mut()) {
+            *slot = mem.word(mem.offset(addr, i)).unwrap_or(0);
         }
+        send(node.get(..count as usize).unwrap_or_default());
         words += count;
         read += 1 + count;
         read < LINKED_LIST_WORD_BUDGET

@@ -7,7 +7,7 @@ use crate::{Gpu, LinkedListReport, PendingInput, Texpage};
 use alloc::vec::Vec;
 use core::fmt;
 
-/// GP0 words gathered into one packet before it is written (more go into the next).
+/// Single GP0 words gathered into one packet before it is written (more go into the next).
 pub const GP0_PACKET_WORDS: usize = 1 << 16;
 
 /// What a recording says about itself.
@@ -64,9 +64,11 @@ impl<E: fmt::Debug + fmt::Display> core::error::Error for RecordError<E> {}
 ///
 /// Then route the GPU's inputs through the recorder ([`Recorder::gp0`], [`Recorder::gp1`],
 /// [`Recorder::gpuread`], the DMA methods) and call [`Recorder::vsync`] at each vertical
-/// blank; or call the `record_*` methods beside your own calls into the GPU. GP0 words are
-/// gathered into packets of up to [`GP0_PACKET_WORDS`] words, consecutive GPUREAD reads of a
-/// VRAM-to-CPU transfer into one discard packet. GP1(04h) (DMA direction) and GP1(10h) and
+/// blank; or call the `record_*` methods beside your own calls into the GPU. Each block of
+/// GP0 words (a [`Recorder::gp0_words`] or DMA block, a linked-list node) is one packet, as
+/// DuckStation writes a packet per command, so a dump lists the program's packets;
+/// single-word writes are gathered into packets of up to [`GP0_PACKET_WORDS`] words, and
+/// consecutive GPUREAD reads of a VRAM-to-CPU transfer into one discard packet. GP1(04h) (DMA direction) and GP1(10h) and
 /// above (information reads, which change no drawing state) are not recorded, as DuckStation
 /// leaves them out.
 ///
@@ -237,11 +239,22 @@ impl<S: Sink> Recorder<S> {
         self.gp0.push(word);
     }
 
-    /// Log words written to GP0 (by the CPU or DMA) without sending them anywhere.
+    /// Log words written to GP0 (by the CPU or DMA) without sending them anywhere: a single
+    /// word joins the words gathered, a block is a packet of its own.
     pub fn record_gp0(&mut self, words: &[u32]) {
         self.flush_reads();
-        for &w in words {
-            self.push_gp0(w);
+        match words {
+            [] => {}
+            [word] => self.push_gp0(*word),
+            block => {
+                self.flush_gp0();
+                for chunk in block.chunks(super::MAX_PACKET_WORDS) {
+                    if self.error.is_none() {
+                        let r = self.writer.gp0(chunk);
+                        self.keep(r);
+                    }
+                }
+            }
         }
     }
 
@@ -324,10 +337,10 @@ impl<S: Sink> Recorder<S> {
         transfer_cycles(u32::try_from(out.len()).unwrap_or(u32::MAX))
     }
 
-    /// [`Gpu::dma_linked_list`], recorded: the data words the walk sends.
+    /// [`Gpu::dma_linked_list`], recorded: each node's data words the walk sends, a packet
+    /// per node.
     pub fn dma_linked_list(&mut self, gpu: &mut Gpu, ram: &[u8], start: u32) -> LinkedListReport {
-        self.flush_reads();
-        linked_list_walk(ram, start, |w| self.push_gp0(w));
+        linked_list_walk(ram, start, |node| self.record_gp0(node));
         gpu.dma_linked_list(ram, start)
     }
 
