@@ -70,6 +70,15 @@ pub fn run(args: &ConvertArgs) -> Result<String, String> {
                 let (_, packet) = item.map_err(|e| at(&e))?;
                 w.packet(&packet).map_err(|e| e.to_string())?;
             }
+            if dialect == Dialect::DuckStation
+                && (summary.trace_begin.is_none()
+                    || summary.frames.iter().all(|f| f.vsync.is_none()))
+            {
+                eprintln!(
+                    "warning: DuckStation plays a dump only from a trace-begin packet and with at \
+                     least one VSync; add `trace-begin` and `vsync` lines to the text"
+                );
+            }
             let bytes = w.into_inner();
             let size = gpu_input::write_dump(&args.output, &bytes, out)?;
             format!(
