@@ -74,7 +74,8 @@ pub const GPU_INPUTS: &str = "a GPU command stream (.gpu text) or a GPU dump (.p
 
 /// Load a command stream or a GPU dump, compressed with zstd or XZ or not, whatever its
 /// name: the contents decide. A name ending `.zst`/`.xz` whose contents are not that
-/// format is refused.
+/// format is refused; text under a dump's name that is no command stream either is
+/// reported as not a dump.
 pub fn load(path: &Path) -> Result<Input, String> {
     let at = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
     let raw = std::fs::read(path).map_err(|e| at(&e))?;
@@ -101,7 +102,16 @@ pub fn load(path: &Path) -> Result<Input, String> {
         return Err(binary_error(path, &bytes, GPU_INPUTS));
     }
     let text = String::from_utf8(bytes).map_err(|e| at(&e))?;
-    let dump = Dump::from_text(&text).map_err(|e| at(&e))?;
+    let dump = Dump::from_text(&text).map_err(|e| {
+        if matches!(output_format(path), Ok(OutputFormat::Dump(_))) {
+            at(&format!(
+                "not a GPU dump (it does not start with `PSXGPUDUMP`), nor a command stream \
+                 (.gpu text): {e}"
+            ))
+        } else {
+            at(&e)
+        }
+    })?;
     Ok(Input {
         dump,
         kind: InputKind::Text,

@@ -307,6 +307,16 @@ fn wrong_inputs_name_the_format() {
         "{}",
         err(&o)
     );
+    let text = tmp("text.psxgpu");
+    std::fs::write(&text, "garbage\n").unwrap();
+    let o = wobble(&["replay", s(&text), "-o", s(&tmp("t.png"))]);
+    assert!(
+        !o.status.success()
+            && err(&o).contains("not a GPU dump (it does not start with `PSXGPUDUMP`)")
+            && err(&o).contains("line 1: unknown port `garbage`"),
+        "{}",
+        err(&o)
+    );
     let fake = tmp("fake.psxgpu.zst");
     std::fs::write(&fake, "gp0 1\n").unwrap();
     let o = wobble(&["replay", s(&fake)]);
