@@ -195,7 +195,7 @@ pub(crate) fn linked_list_walk(
 
 /// CPU cycles a DMA moving `words` words takes: one per word plus one per 16 for DRAM row
 /// changes (110h clocks per 100h words, docs/hardware/dma.md §10).
-pub(crate) fn transfer_cycles(words: u32) -> u32 {
+fn transfer_cycles(words: u32) -> u32 {
     words.saturating_add(words / 16)
 }
 

@@ -286,6 +286,15 @@ impl ReadTransfer {
         self.active
     }
 
+    /// The GPUREAD words left to read (0 once the transfer is done).
+    pub fn remaining_words(&self) -> u32 {
+        if self.active {
+            self.rect.pixels().saturating_sub(self.next).div_ceil(2)
+        } else {
+            0
+        }
+    }
+
     /// The next two pixels (first in the low half); the transfer ends after the last.
     pub fn next_word(&mut self, vram: &Vram) -> u32 {
         let mut word = 0u32;

@@ -400,7 +400,9 @@ fn replay(bytes: &[u8]) -> Gpu {
     let mut gpu = Gpu::new();
     for p in Reader::new(bytes).unwrap() {
         match p.unwrap().1 {
-            Packet::Gp0(w) => w.iter().for_each(|x| gpu.gp0(x)),
+            Packet::Gp0(w) => w.iter().for_each(|x| {
+                gpu.gp0(x);
+            }),
             Packet::Gp1(w) => w.iter().for_each(|x| gpu.gp1(x)),
             Packet::Discard(n) | Packet::Readback(n) => {
                 for _ in 0..n {

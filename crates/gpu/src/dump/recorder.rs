@@ -2,7 +2,7 @@
 //! state, then the port writes, GPUREAD reads and VSyncs as they happen.
 
 use super::{Dialect, GpuVersion, Sink, VsyncTime, WriteError, Writer};
-use crate::dma::{linked_list_walk, transfer_cycles};
+use crate::dma::linked_list_walk;
 use crate::{Gpu, LinkedListReport, PendingInput, Texpage};
 use alloc::vec::Vec;
 use core::fmt;
@@ -297,10 +297,10 @@ impl<S: Sink> Recorder<S> {
         }
     }
 
-    /// [`Gpu::gp0`], recorded.
-    pub fn gp0(&mut self, gpu: &mut Gpu, word: u32) {
+    /// [`Gpu::gp0`], recorded; returns the CPU cycles the store waited.
+    pub fn gp0(&mut self, gpu: &mut Gpu, word: u32) -> u32 {
         self.record_gp0(&[word]);
-        gpu.gp0(word);
+        gpu.gp0(word)
     }
 
     /// [`Gpu::gp0_words`], recorded.
@@ -323,6 +323,14 @@ impl<S: Sink> Recorder<S> {
         gpu.gpuread()
     }
 
+    /// [`Gpu::gpuread_timed`], recorded as [`Recorder::gpuread`] is.
+    pub fn gpuread_timed(&mut self, gpu: &mut Gpu) -> (u32, u32) {
+        if gpu.read.active() {
+            self.record_gpuread(1);
+        }
+        gpu.gpuread_timed()
+    }
+
     /// [`Gpu::dma_block_write`], recorded.
     pub fn dma_block_write(&mut self, gpu: &mut Gpu, words: &[u32]) -> u32 {
         self.record_gp0(words);
@@ -331,10 +339,9 @@ impl<S: Sink> Recorder<S> {
 
     /// [`Gpu::dma_block_read`], recorded: the words read while the transfer lasts.
     pub fn dma_block_read(&mut self, gpu: &mut Gpu, out: &mut [u32]) -> u32 {
-        for w in out.iter_mut() {
-            *w = self.gpuread(gpu);
-        }
-        transfer_cycles(u32::try_from(out.len()).unwrap_or(u32::MAX))
+        let left = gpu.read.remaining_words();
+        self.record_gpuread(left.min(u32::try_from(out.len()).unwrap_or(u32::MAX)));
+        gpu.dma_block_read(out)
     }
 
     /// [`Gpu::dma_linked_list`], recorded: each node's data words the walk sends, a packet
