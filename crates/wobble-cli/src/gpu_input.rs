@@ -108,6 +108,10 @@ pub fn load(path: &Path) -> Result<Input, String> {
                 "not a GPU dump (it does not start with `PSXGPUDUMP`), nor a command stream \
                  (.gpu text): {e}"
             ))
+        } else if e.to_string().contains("timing directive") {
+            at(&format!(
+                "{e}; `wobble replay --timing` reads timed streams"
+            ))
         } else {
             at(&e)
         }
