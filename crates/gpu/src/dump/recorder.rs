@@ -3,7 +3,8 @@
 
 use super::{Dialect, GpuVersion, Sink, VsyncTime, WriteError, Writer};
 use crate::dma::linked_list_walk;
-use crate::{Gpu, LinkedListReport, PendingInput, Texpage};
+use crate::encode;
+use crate::{Gpu, LinkedListReport, PendingInput};
 use alloc::vec::Vec;
 use core::fmt;
 
@@ -132,40 +133,6 @@ fn display_words(gpu: &Gpu) -> [u32; 6] {
     ]
 }
 
-/// GP0(E1h)-(E6h) words restoring `gpu`'s drawing environment (docs/hardware/gpu.md §2).
-fn environment_words(gpu: &Gpu) -> [u32; 6] {
-    let s = gpu.draw_state();
-    let m = &s.mode;
-    let page = Texpage {
-        page_x: m.page_x,
-        page_y: m.page_y,
-        blend: m.blend,
-        depth: m.depth,
-        depth_reserved: m.depth_reserved,
-        texture_disable: m.texture_disable,
-    }
-    .bits();
-    let w = &s.window;
-    let a = &s.area;
-    [
-        0xE100_0000
-            | page
-            | (m.dither as u32) << 9
-            | (m.draw_to_display as u32) << 10
-            | (m.flip_x as u32) << 12
-            | (m.flip_y as u32) << 13,
-        0xE200_0000
-            | (w.mask_x as u32 & 0x1F)
-            | (w.mask_y as u32 & 0x1F) << 5
-            | (w.offset_x as u32 & 0x1F) << 10
-            | (w.offset_y as u32 & 0x1F) << 15,
-        0xE300_0000 | (a.left as u32 & 0x3FF) | (a.top as u32 & 0x3FF) << 10,
-        0xE400_0000 | (a.right as u32 & 0x3FF) | (a.bottom as u32 & 0x3FF) << 10,
-        0xE500_0000 | (s.offset_x as u32 & 0x7FF) | (s.offset_y as u32 & 0x7FF) << 11,
-        0xE600_0000 | s.mask.set as u32 | (s.mask.check as u32) << 1,
-    ]
-}
-
 impl<S: Sink> Recorder<S> {
     /// Start recording `gpu` into `sink`: the information packets, the state-restore
     /// prologue and the trace-begin mark. Fails when the GPU is in the middle of GP0 input.
@@ -189,13 +156,13 @@ impl<S: Sink> Recorder<S> {
             .chunks_exact(2)
             .map(|p| p[0] as u32 | (p[1] as u32) << 16);
         // GP0(A0h) at (0, 0), size 0 = 1024x512 (docs/hardware/gpu.md §8), then the pixels.
-        let transfer = [0xA000_0000, 0, 0].into_iter().chain(vram);
+        let transfer = encode::cpu_to_vram(0, 0, 0, 0).into_iter().chain(vram);
         w.words(
             super::PacketType::Gp0.byte(),
             Counted(transfer, 3 + crate::VRAM_LEN / 2),
         )?;
         w.gp1(&display_words(gpu))?;
-        w.gp0(&environment_words(gpu))?;
+        w.gp0(&encode::environment(gpu.draw_state()))?;
         w.trace_begin()?;
         Ok(Recorder {
             writer: w,
