@@ -1,7 +1,8 @@
 // Drives the inspect report in headless Chromium. Arguments: chromium path, report
 // index.html, screenshot path, frame report index.html (render --inspect), the stream's
-// file name, the stream's path and the pixel_history example (an independent replay of the
-// stream on `gpu`). Exits non-zero on the first failed check.
+// file name, the stream's path, the pixel_history example (an independent replay of the
+// stream on `gpu`) and optionally the report of frame 2 of a 3-frame GPU dump (inspect
+// --frame 2). Exits non-zero on the first failed check.
 "use strict";
 const { chromium } = require("playwright-core");
 const fs = require("fs");
@@ -10,7 +11,7 @@ const path = require("path");
 
 const { execFileSync } = require("child_process");
 
-const [chromePath, reportPath, shotPath, framePath, streamName, streamPath, replayBin] = process.argv.slice(2);
+const [chromePath, reportPath, shotPath, framePath, streamName, streamPath, replayBin, dumpFramePath] = process.argv.slice(2);
 
 function check(cond, what) {
   if (!cond) {
@@ -374,6 +375,35 @@ function check(cond, what) {
   const origin = await page.textContent("#detail .origin");
   check(origin.includes("face " + link.face), `a drawn face's row selects its packet (line ${link.line}): ${origin}`);
   check(await shown("#detail h2", "#detail"), "the packet's detail shows next to the faces table");
+
+  // One frame of a GPU dump: its commands listed over the VRAM the frame starts from.
+  if (dumpFramePath) {
+    await page.goto("file://" + path.resolve(dumpFramePath));
+    await page.waitForSelector("#rows tbody tr");
+    await page.waitForFunction(() => INSPECT.writerAt(0, 0) >= 0 && INSPECT.vramAt(0, 0) >= 0);
+    const dumpTitle = await page.textContent("#title");
+    check(/\.psxgpu( \(.*\))?, frame 2 of 3$/.test(dumpTitle), "dump frame report titled with the frame: " + dumpTitle);
+    const dumpSummary = await page.textContent("#summary");
+    check(/[1-9]\d* commands, [1-9]\d* draws/.test(dumpSummary), "dump frame lists its commands and draws: " + dumpSummary);
+    // The VRAM entering frame 2 (what frames 0 and 1 left) shows where the frame writes nothing.
+    const kept = await page.evaluate(() => {
+      for (let y = 0; y < 512; y += 2) for (let x = 0; x < 1024; x += 2)
+        if (INSPECT.writerAt(x, y) === 0 && INSPECT.vramAt(x, y) > 0) return { x, y };
+      return null;
+    });
+    check(kept !== null, "VRAM from before the frame kept where the frame draws nothing" + (kept ? ` (${kept.x}, ${kept.y})` : ""));
+    const wrote = await page.evaluate(() => {
+      for (let y = 0; y < 512; y += 3) for (let x = 0; x < 1024; x += 3) {
+        const w = INSPECT.writerAt(x, y);
+        if (w > 0 && INSPECT.vramAt(x, y) > 0) return { x, y, w };
+      }
+      return null;
+    });
+    check(wrote !== null, "the frame's commands changed pixels");
+    await clickPixel(wrote.x, wrote.y);
+    await page.waitForFunction((n) => INSPECT.current() === n, wrote.w - 1);
+    check((await page.textContent("#detail h2")).startsWith("#" + (wrote.w - 1) + " "), `pixel (${wrote.x}, ${wrote.y}) selects the frame's command #${wrote.w - 1} that last wrote it`);
+  }
 
   check(errors.length === 0, "no page errors, console errors or network requests" + (errors.length ? ": " + errors.join("; ") : ""));
   await browser.close();
