@@ -153,7 +153,8 @@ impl Gpu {
         self.texture_disable_allowed
     }
 
-    /// GP1(00h): reset the command buffer, IRQ, display and drawing state; VRAM is kept.
+    /// GP1(00h): reset the command buffer, IRQ, display and drawing state, and empty the CLUT
+    /// and texture caches (docs/hardware/gpu.md §10); VRAM is kept.
     /// Drawing in progress is abandoned (docs/emulator.md, "Drawing time, FIFO and DMA").
     fn reset(&mut self) {
         self.reset_command_buffer();
@@ -166,6 +167,7 @@ impl Gpu {
         self.draw = Default::default();
         self.texture_disable_allowed = false;
         self.clut.invalidate();
+        self.texture_cache.invalidate();
     }
 
     /// GP1(01h): drop any partial packet and transfer, and the FIFO's waiting words; the

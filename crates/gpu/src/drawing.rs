@@ -165,6 +165,17 @@ impl Cost {
     pub fn clut_load(entries: u32) -> u32 {
         entries.saturating_mul(Self::CLUT_ENTRY)
     }
+
+    /// Per texture cache miss (docs/hardware/gpu.md §10): Mednafen's figure, 4 of its half
+    /// cycles, so 2 CPU cycles (its GetTexel charges 4 per miss, its comment giving the
+    /// console as 12 + 4 cycles for sprites on the SCPH-5501's GPU), provisional until fitted
+    /// to the console's textured rows.
+    pub const TEXTURE_MISS: u32 = cycles(2);
+
+    /// `misses` texture cache misses.
+    pub fn texture_misses(misses: u32) -> u32 {
+        misses.saturating_mul(Self::TEXTURE_MISS)
+    }
 }
 
 /// One unit of work waiting in the FIFO: the words it occupies and its time.

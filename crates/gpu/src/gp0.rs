@@ -18,6 +18,7 @@ use crate::rasterizer::{
     draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
 use crate::state::{ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, TextureWindow};
+use crate::texture_cache::WriteRegion;
 use crate::transfer::{self, FillRect, ReadTransfer, TransferRect, WriteTransfer};
 use crate::{Gpu, color};
 
@@ -542,11 +543,16 @@ impl Gpu {
     fn execute(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
         let cmd = p[0];
         match Command::of(cmd).kind {
-            Kind::ClearCache => self.clut.invalidate(),
+            Kind::ClearCache => {
+                self.clut.invalidate();
+                self.texture_cache.invalidate();
+            }
             Kind::Fill => {
+                let rect = FillRect::decode(p[1], p[2]);
+                self.texture_cache
+                    .prepare(self.vram.as_array(), None, WriteRegion::fill(&rect));
                 let rows = self.draw_rows();
-                let (w, h) =
-                    transfer::fill(&mut self.vram, cmd, FillRect::decode(p[1], p[2]), rows);
+                let (w, h) = transfer::fill(&mut self.vram, cmd, rect, rows);
                 return Cost::fill(w, h);
             }
             Kind::Irq => {
@@ -570,14 +576,17 @@ impl Gpu {
             Kind::Line(op) => return self.line(op, p),
             Kind::Rectangle(op) => return self.rectangle(op, p),
             Kind::VramCopy => {
+                self.texture_cache.invalidate();
                 let pixels = transfer::copy(&mut self.vram, p[1], p[2], p[3], self.draw.mask);
                 return Cost::copy(pixels);
             }
             Kind::CpuToVram => {
+                self.texture_cache.invalidate();
                 let rect = TransferRect::decode(p[1], p[2]);
                 self.gp0.mode = Mode::Write(WriteTransfer::new(rect));
             }
             Kind::VramToCpu => {
+                self.texture_cache.invalidate();
                 let rect = TransferRect::decode(p[1], p[2]);
                 self.read = ReadTransfer::new(rect);
                 return rect.pixels().div_ceil(2).saturating_mul(Cost::READ_WORD);
@@ -588,7 +597,9 @@ impl Gpu {
             | Kind::AreaBottomRight
             | Kind::DrawingOffset
             | Kind::MaskBits => {
-                apply_environment(&mut self.draw, cmd, self.texture_disable_allowed)
+                let old = self.draw.mode;
+                apply_environment(&mut self.draw, cmd, self.texture_disable_allowed);
+                self.texture_cache.texpage_change(&old, &self.draw.mode);
             }
             Kind::Nop => {}
         }
@@ -632,12 +643,17 @@ impl Gpu {
         p: &[u32; MAX_PACKET],
     ) -> u32 {
         let semi = op.semi_transparent;
+        let old = self.draw.mode;
         let (tri, fourth) = decode_polygon::<GOURAUD, QUAD, UV>(
             op,
             p,
             &mut self.draw,
             self.texture_disable_allowed,
         );
+        if UV {
+            self.texture_cache.texpage_change(&old, &self.draw.mode);
+        }
+        self.prepare_texture_cache(tri.texture.as_ref());
         let gouraud = GOURAUD;
         let textured = tri.texture.is_some();
         let clut_units = tri
@@ -660,15 +676,29 @@ impl Gpu {
                 Some(second)
             }
         };
-        let drawn = draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, &tri, rows);
+        let cache = &mut self.texture_cache;
+        let drawn = draw_triangle_rows(
+            &mut self.vram,
+            &self.draw,
+            &mut self.clut,
+            cache,
+            &tri,
+            rows,
+        );
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
         if let Some(second) = &second {
-            let drawn =
-                draw_triangle_rows(&mut self.vram, &self.draw, &mut self.clut, second, rows);
+            let drawn = draw_triangle_rows(
+                &mut self.vram,
+                &self.draw,
+                &mut self.clut,
+                cache,
+                second,
+                rows,
+            );
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }
-        units
+        units.saturating_add(Cost::texture_misses(self.texture_cache.take_misses()))
     }
 
     /// GP0(20h), a flat untextured opaque triangle (21h: the raw bit, which only textured
@@ -676,6 +706,7 @@ impl Gpu {
     /// draw mode is unchanged (no texpage attribute), no CLUT is loaded, nothing is read back
     /// (docs/hardware/gpu.md §2, §3).
     fn flat_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        self.prepare_texture_cache(None);
         const F3: PolygonOp = PolygonOp::from_op(0x20);
         let at = |n: usize| {
             let v = Gpu::vertex(&self.draw, p[F3.position_word(n)], 0);
@@ -693,6 +724,7 @@ impl Gpu {
     /// it. Dithered under E1h bit 9; the draw mode is unchanged (no texpage attribute), no
     /// CLUT is loaded, nothing is read back (docs/hardware/gpu.md §2, §3, §6).
     fn gouraud_triangle(&mut self, p: &[u32; MAX_PACKET]) -> u32 {
+        self.prepare_texture_cache(None);
         const G3: PolygonOp = PolygonOp::from_op(0x30);
         let vertex = |n| Gpu::vertex(&self.draw, p[G3.position_word(n)], p[G3.color_word(n)]);
         let tri = Triangle {
@@ -703,11 +735,18 @@ impl Gpu {
             dither: self.draw.mode.dither,
         };
         let rows = self.draw_rows();
-        let drawn = draw_gouraud_triangle_rows(&mut self.vram, &self.draw, &tri, rows);
+        let drawn = draw_gouraud_triangle_rows(
+            &mut self.vram,
+            &self.draw,
+            &mut self.texture_cache,
+            &tri,
+            rows,
+        );
         Cost::triangle(false, true, false, false, drawn)
     }
 
     fn line(&mut self, op: LineOp, p: &[u32; MAX_PACKET]) -> u32 {
+        self.prepare_texture_cache(None);
         // One flat opaque segment (no Gouraud, semi-transparency or polyline bit),
         // undithered, without mask check, on every row: two positions and a colour, without
         // the decoded line, when it lies inside the drawing area (docs/hardware/gpu.md §2, §4).
@@ -727,7 +766,8 @@ impl Gpu {
         }
         let line = line_packet(op, p, &self.draw);
         let rows = self.draw_rows();
-        let drawn = draw_line_rows(&mut self.vram, &self.draw, &line, rows);
+        let cache = &mut self.texture_cache;
+        let drawn = draw_line_rows(&mut self.vram, &self.draw, cache, &line, rows);
         if op.polyline {
             self.gp0.mode = Mode::Polyline(Polyline::new(line));
         }
@@ -747,8 +787,10 @@ impl Gpu {
                 None
             }
             PolylineStep::Segment(p) => {
+                self.prepare_texture_cache(None);
                 let rows = self.draw_rows();
-                let drawn = draw_line_rows(&mut self.vram, &self.draw, &p.line, rows);
+                let cache = &mut self.texture_cache;
+                let drawn = draw_line_rows(&mut self.vram, &self.draw, cache, &p.line, rows);
                 self.gp0.mode = Mode::Polyline(p);
                 Some(Cost::line(drawn))
             }
@@ -757,17 +799,28 @@ impl Gpu {
 
     fn rectangle(&mut self, op: RectangleOp, p: &[u32; MAX_PACKET]) -> u32 {
         let rect = rectangle_packet(op, p, &self.draw, self.texture_disable_allowed);
+        self.prepare_texture_cache(rect.texture.as_ref());
         let clut_units = rect
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let rows = self.draw_rows();
         let textured = rect.texture.is_some();
-        let drawn = draw_rectangle_rows(&mut self.vram, &self.draw, &mut self.clut, &rect, rows);
-        clut_units.saturating_add(Cost::rectangle(
-            textured,
-            op.semi_transparent || self.draw.mask.check,
-            drawn,
-        ))
+        let cache = &mut self.texture_cache;
+        let drawn = draw_rectangle_rows(
+            &mut self.vram,
+            &self.draw,
+            &mut self.clut,
+            cache,
+            &rect,
+            rows,
+        );
+        clut_units
+            .saturating_add(Cost::rectangle(
+                textured,
+                op.semi_transparent || self.draw.mask.check,
+                drawn,
+            ))
+            .saturating_add(Cost::texture_misses(self.texture_cache.take_misses()))
     }
 }
 

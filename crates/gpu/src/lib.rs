@@ -54,6 +54,7 @@ mod save;
 mod serde_array;
 mod state;
 mod texture;
+mod texture_cache;
 mod timing;
 mod transfer;
 
@@ -79,6 +80,8 @@ pub use state::{
     TextureWindow,
 };
 use texture::ClutCache;
+use texture_cache::TextureCache;
+pub use texture_cache::TextureCacheEntry;
 pub use timing::{Beam, CPU_CLOCK_HZ, EventKind, Events, VideoStandard};
 
 /// VRAM width in halfwords.
@@ -161,6 +164,7 @@ impl core::fmt::Debug for Vram {
 pub struct Gpu {
     draw: DrawState,
     clut: ClutCache,
+    texture_cache: TextureCache,
     gp0: gp0::Gp0State,
     read: transfer::ReadTransfer,
     display: DisplayState,
@@ -192,6 +196,7 @@ impl Gpu {
             vram: Vram::new(),
             draw: DrawState::default(),
             clut: ClutCache::default(),
+            texture_cache: TextureCache::default(),
             gp0: gp0::Gp0State::default(),
             read: transfer::ReadTransfer::default(),
             display,
@@ -455,8 +460,10 @@ impl Gpu {
         &self.vram
     }
 
-    /// VRAM, mutable (for loading state or tests).
+    /// VRAM, mutable (for loading state or tests). Texels the texture cache holds keep the
+    /// values they were loaded with, as after any other write (docs/gpu.md, "Texture cache").
     pub fn vram_mut(&mut self) -> &mut Vram {
+        self.texture_cache.keep_copies(self.vram.as_array());
         &mut self.vram
     }
 
@@ -468,6 +475,52 @@ impl Gpu {
     /// The display state set by GP1.
     pub fn display_state(&self) -> &DisplayState {
         &self.display
+    }
+
+    /// Whether textured primitives read their texels through the texture cache (on at
+    /// power-on; docs/gpu.md, "Texture cache").
+    pub fn texture_cache_enabled(&self) -> bool {
+        self.texture_cache.enabled()
+    }
+
+    /// Turn the texture cache on or off (docs/gpu.md, "Texture cache"); either way it starts
+    /// empty. On, as on the console, texels are read through the 2 KB cache
+    /// (docs/hardware/gpu.md §10): VRAM drawn or filled under cached texels is not seen until
+    /// the cache reloads them, and each miss adds to the drawing time. Off, texels are read
+    /// straight from VRAM and misses cost nothing.
+    ///
+    /// ```
+    /// let mut gpu = gpu::Gpu::new();
+    /// gpu.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]); // draw anywhere, no offset
+    /// gpu.gp0(0xE100_0108); // texture page (512, 0), 15-bit
+    /// let fill = |rgb: u32| [0x0200_0000 | rgb, 512, 1 << 16 | 16]; // GP0(02h): 16x1 at (512, 0)
+    /// let sprite = [0x6D00_0000, 0, 0]; // GP0(6Dh): 1x1 raw-textured sprite at (0, 0), UV (0, 0)
+    /// gpu.gp0_words(&fill(0x00FF00)); // green
+    /// gpu.gp0_words(&sprite);
+    /// assert_eq!(gpu.vram().pixel(0, 0), 0x03E0); // the texel, loaded into the cache
+    /// gpu.gp0_words(&fill(0xFF0000)); // blue: a fill leaves the cache as it is
+    /// gpu.gp0_words(&sprite);
+    /// assert_eq!(gpu.vram().pixel(0, 0), 0x03E0); // the cached (stale) green texel
+    /// gpu.set_texture_cache(false);
+    /// gpu.gp0_words(&sprite);
+    /// assert_eq!(gpu.vram().pixel(0, 0), 0x7C00); // off: VRAM as it is now
+    /// ```
+    pub fn set_texture_cache(&mut self, on: bool) {
+        self.texture_cache.set_enabled(on);
+    }
+
+    /// Texture cache misses since power-on (docs/gpu.md, "Texture cache"): the difference
+    /// before and after a command is that command's count. Nothing is counted while the cache
+    /// is off.
+    pub fn texture_cache_misses(&self) -> u64 {
+        self.texture_cache.total_misses()
+    }
+
+    /// Texture cache entry `index` (0-255), for debuggers: where its four halfwords were
+    /// loaded from and their values then; `None` when the entry holds nothing (and always
+    /// while the cache is off). Entries are numbered as docs/hardware/gpu.md §10 describes.
+    pub fn texture_cache_entry(&self, index: u8) -> Option<TextureCacheEntry> {
+        self.texture_cache.entry(index, self.vram.as_array())
     }
 
     /// The display area the current GP1 state selects (docs/hardware/gpu.md §9): position, size in

@@ -106,7 +106,10 @@ impl Gpu {
             *w = *p;
         }
         let decoded = polygon_packet(op, &words, &self.draw, self.texture_disable_allowed);
+        self.texture_cache
+            .texpage_change(&self.draw.mode, &decoded.mode);
         self.draw.mode = decoded.mode;
+        self.prepare_texture_cache(decoded.first.texture.as_ref());
         let (ox, oy) = (
             i32::from(self.draw.offset_x) << SUBPIXEL_BITS,
             i32::from(self.draw.offset_y) << SUBPIXEL_BITS,
@@ -121,6 +124,7 @@ impl Gpu {
             &mut self.vram,
             &self.draw,
             &mut self.clut,
+            &mut self.texture_cache,
             &decoded.first,
             &first,
             perspective,
@@ -131,6 +135,7 @@ impl Gpu {
                 &mut self.vram,
                 &self.draw,
                 &mut self.clut,
+                &mut self.texture_cache,
                 second,
                 &at,
                 perspective,

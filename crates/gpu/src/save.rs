@@ -17,6 +17,7 @@ use alloc::vec::Vec;
 
 use crate::state::DrawState;
 use crate::texture::ClutCache;
+use crate::texture_cache::TextureCache;
 use crate::{DisplayState, Gpu, VRAM_LEN, Vram, drawing, gp0, serde_array, timing, transfer};
 
 /// First field of every GPU save state: "WGPU" read as a little-endian `u32`.
@@ -88,7 +89,8 @@ impl SaveState<Gpu> {
 
 impl Gpu {
     /// The whole chip state with the format header, for serializing: VRAM, drawing and
-    /// display registers, a packet, transfer or polyline in progress, the CLUT cache, the
+    /// display registers, a packet, transfer or polyline in progress, the CLUT and texture
+    /// caches (with the texture cache's switch and miss count), the
     /// FIFO and drawing time, video timing and the events not yet reported by [`Gpu::run`],
     /// the GPUREAD latch.
     pub fn save_state(&self) -> SaveState<&Gpu> {
@@ -381,6 +383,7 @@ impl<'de> Deserialize<'de> for GpuAnyLayout {
 pub(crate) struct GpuFields<V = Vram, R = transfer::ReadTransfer, D = drawing::Drawing> {
     draw: DrawState,
     clut: ClutCache,
+    texture_cache: TextureCache,
     gp0: gp0::Gp0State,
     read: R,
     display: DisplayState,
@@ -429,6 +432,7 @@ impl TryFrom<GpuFields> for Gpu {
         Ok(Gpu {
             draw: f.draw,
             clut: f.clut,
+            texture_cache: f.texture_cache,
             gp0: f.gp0,
             read: f.read,
             display: f.display,

@@ -1,10 +1,11 @@
 //! Texture sampling: texture window, 4/8/15-bit texel fetch, CLUT lookup and the CLUT cache
 //! (docs/hardware/gpu.md §7).
 
-use crate::VRAM_WIDTH;
 use crate::color::{DitheredCells, dithered_clut4};
 use crate::primitive::Texture;
 use crate::state::{TextureDepth, TextureWindow};
+use crate::texture_cache::TextureCache;
+use crate::{VRAM_LEN, VRAM_WIDTH};
 
 /// The latched CLUT (docs/hardware/gpu.md §7, "CLUT cache"): entries are loaded from VRAM when a 4/8-bit
 /// primitive is drawn with a CLUT position other than the cached one, or needs 8-bit entries
@@ -213,6 +214,18 @@ pub struct Sampler<'a> {
     pub v_or: u8,
 }
 
+/// The VRAM halfword at `address` (masked to VRAM) as a texture of kind `TEX` (1 = 4-bit,
+/// 2 = 8-bit, 3 = 15-bit) reads it, through `cache` in the cache mode `CACHE`
+/// (docs/hardware/gpu.md §10).
+#[inline(always)]
+pub(crate) fn texture_halfword<const TEX: u8, const CACHE: u8>(
+    vram: &[u16; VRAM_LEN],
+    cache: &mut TextureCache,
+    address: usize,
+) -> u16 {
+    cache.halfword::<TEX, CACHE>(vram, address)
+}
+
 impl<'a> Sampler<'a> {
     /// A sampler for the page at (`page_x`, `page_y`) through `window`.
     pub fn new(clut: &'a [u16; 256], page_x: usize, page_y: usize, window: TextureWindow) -> Self {
@@ -234,34 +247,54 @@ impl<'a> Sampler<'a> {
         u32::from_le_bytes([self.u_and, self.u_or, self.v_and, self.v_or]) == 0x00FF_00FF
     }
 
-    /// The 4-bit texel index (a CLUT entry number) at (u, v), after the texture window; X
-    /// wraps at 1024 (docs/hardware/gpu.md §7).
+    /// The VRAM address of the halfword holding texel (u, v) of a page of kind `TEX` (1 =
+    /// 4-bit, 2 = 8-bit, 3 = 15-bit), after the texture window; X wraps at 1024, Y at 512
+    /// (docs/hardware/gpu.md §7). Returns it with the window-applied U.
     #[inline(always)]
-    pub fn index4(&self, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> usize {
+    fn address<const TEX: u8>(&self, u: u8, v: u8) -> (usize, usize) {
         let u = ((u & self.u_and) | self.u_or) as usize;
         let v = ((v & self.v_and) | self.v_or) as usize;
+        let shift = match TEX {
+            1 => 2,
+            2 => 1,
+            _ => 0,
+        };
         let row = ((self.page_y + v) & 511) * VRAM_WIDTH;
-        let word = vram[row + ((self.page_x + (u >> 2)) & 1023)];
+        (row + ((self.page_x + (u >> shift)) & 1023), u)
+    }
+
+    /// The 4-bit texel index (a CLUT entry number) at (u, v), after the texture window; X
+    /// wraps at 1024 (docs/hardware/gpu.md §7). Read through `cache` in mode `CACHE` (§10).
+    #[inline(always)]
+    pub fn index4<const CACHE: u8>(
+        &self,
+        vram: &[u16; VRAM_LEN],
+        cache: &mut TextureCache,
+        u: u8,
+        v: u8,
+    ) -> usize {
+        let (address, u) = self.address::<1>(u, v);
+        let word = texture_halfword::<1, CACHE>(vram, cache, address);
         ((word >> ((u & 3) * 4)) & 0xF) as usize
     }
 
-    /// The texel at (u, v) for a page of kind `kind` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
-    /// after the texture window; X wraps at 1024 (docs/hardware/gpu.md §7).
+    /// The texel at (u, v) for a page of kind `TEX` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
+    /// after the texture window; X wraps at 1024 (docs/hardware/gpu.md §7). Read through
+    /// `cache` in mode `CACHE` (§10).
     #[inline(always)]
-    pub fn fetch(&self, kind: u8, vram: &[u16; crate::VRAM_LEN], u: u8, v: u8) -> u16 {
-        let u = ((u & self.u_and) | self.u_or) as usize;
-        let v = ((v & self.v_and) | self.v_or) as usize;
-        let row = ((self.page_y + v) & 511) * VRAM_WIDTH;
-        match kind {
-            1 => {
-                let word = vram[row + ((self.page_x + (u >> 2)) & 1023)];
-                self.clut[((word >> ((u & 3) * 4)) & 0xF) as usize]
-            }
-            2 => {
-                let word = vram[row + ((self.page_x + (u >> 1)) & 1023)];
-                self.clut[((word >> ((u & 1) * 8)) & 0xFF) as usize]
-            }
-            _ => vram[row + ((self.page_x + u) & 1023)],
+    pub fn fetch<const TEX: u8, const CACHE: u8>(
+        &self,
+        vram: &[u16; VRAM_LEN],
+        cache: &mut TextureCache,
+        u: u8,
+        v: u8,
+    ) -> u16 {
+        let (address, u) = self.address::<TEX>(u, v);
+        let word = texture_halfword::<TEX, CACHE>(vram, cache, address);
+        match TEX {
+            1 => self.clut[((word >> ((u & 3) * 4)) & 0xF) as usize],
+            2 => self.clut[((word >> ((u & 1) * 8)) & 0xFF) as usize],
+            _ => word,
         }
     }
 }

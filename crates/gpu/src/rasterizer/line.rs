@@ -133,6 +133,7 @@ pub(super) fn draw<
     env_ref: &PixelEnv,
     line: &Line,
     rows: super::Rows,
+    cache: &mut crate::texture_cache::TextureCache,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -165,7 +166,7 @@ pub(super) fn draw<
             } else {
                 &PLAIN_TABLE
             };
-            shade_pixel::<TEX_NONE, false, BLEND, MASK_CHECK>(
+            shade_pixel::<TEX_NONE, false, BLEND, MASK_CHECK, { crate::texture_cache::mode::OFF }>(
                 vram,
                 ((py & 511) as usize) * VRAM_WIDTH + (px & 1023) as usize,
                 rgb,
@@ -174,6 +175,7 @@ pub(super) fn draw<
                 shade,
                 &env,
                 None,
+                cache,
             );
         }
         x = x.wrapping_add(walk.x_step);

@@ -22,6 +22,7 @@ use crate::color::{DitheredCells, ShadeTable, blend, pack555, shaded_clut4};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::state::{BlendMode, DrawState, TextureDepth};
 use crate::texture::{ClutCache, Sampler};
+use crate::texture_cache::{TextureCache, mode};
 use crate::{VRAM_LEN, Vram};
 pub use coverage::{
     Coverage, DropReason, PixelBounds, classify_line, classify_rectangle, classify_triangle,
@@ -75,6 +76,24 @@ fn uses_lut(texture: Option<&Texture>, gouraud: bool, dither: bool) -> bool {
     texture_kind(texture) == 1 && !gouraud && !dither
 }
 
+/// `$body` with `$m` a const item holding the texture cache mode `$mode` (one of
+/// [`crate::texture_cache::mode`]), so that `$body` can pass it as a const argument.
+/// Only the modes listed are built, the last for any other value.
+macro_rules! with_cache_mode {
+    ($mode:expr, $m:ident => $body:expr; $($name:ident),* ; $last:ident) => {
+        match $mode {
+            $(mode::$name => {
+                const $m: u8 = mode::$name;
+                $body
+            })*
+            _ => {
+                const $m: u8 = mode::$last;
+                $body
+            }
+        }
+    };
+}
+
 /// Expand runtime booleans into const generic arguments: `dispatch!(f(args); [prefix]; a, b)`
 /// calls `f::<prefix.., a?, b?>(args)` with each flag as a literal.
 macro_rules! dispatch {
@@ -120,7 +139,7 @@ pub(crate) struct PixelEnv<'a> {
 /// undithered one). With `lut` (4-bit textures only; a constant in every span routine, so
 /// the branch on it is folded away) the texel's shaded colour comes from that table of
 /// shaded CLUT entries ([`shaded_clut4`], [`crate::color::dithered_clut4`]) and `rgb` and `shade` are not
-/// read.
+/// read. With `CACHE` the texel is read through the texture cache (docs/hardware/gpu.md §10).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn shade_pixel<
@@ -128,6 +147,7 @@ pub(crate) fn shade_pixel<
     const RAW: bool,
     const BLEND: bool,
     const MASK_CHECK: bool,
+    const CACHE: u8,
 >(
     vram: &mut [u16; VRAM_LEN],
     index: usize,
@@ -137,22 +157,25 @@ pub(crate) fn shade_pixel<
     shade: &ShadeTable,
     env: &PixelEnv,
     lut: Option<&[u32; 16]>,
+    cache: &mut TextureCache,
 ) {
     let dst = vram[index & (VRAM_LEN - 1)];
-    if MASK_CHECK && dst & 0x8000 != 0 {
-        return;
-    }
     let c5 = |i: i32| shade[(i & 511) as usize] as u16;
     let (color, semi, bit15) = if TEX == TEX_NONE {
+        if MASK_CHECK && dst & 0x8000 != 0 {
+            return;
+        }
         let c = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
         (c, BLEND, 0)
     } else if let Some(lut) = lut {
-        let e = lut[env.sampler.index4(vram, u, v)];
+        let e = lut[env.sampler.index4::<CACHE>(vram, cache, u, v)];
         write_shaded::<BLEND, MASK_CHECK>(vram, index, e, env.mask_or, env.blend);
         return;
     } else {
-        let t = env.sampler.fetch(TEX, vram, u, v);
-        if t == 0 {
+        // The texel is read whether or not the mask check keeps the pixel: the read goes
+        // through the texture cache (docs/hardware/gpu.md §10).
+        let t = env.sampler.fetch::<TEX, CACHE>(vram, cache, u, v);
+        if t == 0 || (MASK_CHECK && dst & 0x8000 != 0) {
             return;
         }
         let c = if RAW {
@@ -391,16 +414,6 @@ impl Rows {
         n
     }
 
-    /// Rows a walk steps from one drawn row to the next: 1, or 2 when every other row is
-    /// skipped.
-    #[inline(always)]
-    pub(crate) fn stride(self) -> i32 {
-        match self {
-            Rows::All => 1,
-            Rows::SkipParity(_) => 2,
-        }
-    }
-
     /// Call `f` for each drawn row of `lo..hi`, ascending.
     #[inline(always)]
     pub(crate) fn each(self, lo: i32, hi: i32, mut f: impl FnMut(i32)) {
@@ -493,11 +506,13 @@ fn dithered_clut4_triangle(tri: &Triangle) -> bool {
 }
 
 /// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
-/// blending, dithering, mask, writing only the lines `rows` keeps. Returns what was drawn.
+/// blending, dithering, mask, writing only the lines `rows` keeps, texels read through
+/// `cache` when it is on (§10). Returns what was drawn.
 pub(crate) fn draw_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
+    cache: &mut TextureCache,
     tri: &Triangle,
     rows: Rows,
 ) -> DrawCount {
@@ -531,11 +546,20 @@ pub(crate) fn draw_triangle_rows(
         state.mask.check,
     );
     use triangle::draw;
+    let c = cache.mode();
     match texture_kind(tri.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, tri, rows); [0,]; g, false, b, d, m),
-        1 => dispatch!(draw(vram, state, &env, tri, rows); [1,]; g, raw, b, d, m),
-        2 => dispatch!(draw(vram, state, &env, tri, rows); [2,]; g, raw, b, d, m),
-        _ => dispatch!(draw(vram, state, &env, tri, rows); [3,]; g, raw, b, d, m),
+        0 => {
+            dispatch!(draw(vram, state, &env, tri, rows, cache); [0, {mode::OFF},]; g, false, b, d, m)
+        }
+        1 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, rows, cache); [1, M,]; g, raw, b, d, m); OFF, TAGS; COPIES)
+        }
+        2 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, rows, cache); [2, M,]; g, raw, b, d, m); OFF, TAGS; COPIES)
+        }
+        _ => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, rows, cache); [3, M,]; g, raw, b, d, m); OFF, TAGS; COPIES)
+        }
     }
 }
 
@@ -568,6 +592,7 @@ pub(crate) fn draw_flat_triangle_rows(
 pub(crate) fn draw_gouraud_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
+    cache: &mut TextureCache,
     tri: &Triangle,
     rows: Rows,
 ) -> DrawCount {
@@ -581,12 +606,12 @@ pub(crate) fn draw_gouraud_triangle_rows(
         line: &[],
     };
     if tri.dither {
-        triangle::draw_inline::<TEX_NONE, true, false, false, true, false>(
-            vram, state, &env, tri, rows,
+        triangle::draw_inline::<TEX_NONE, { mode::OFF }, true, false, false, true, false>(
+            vram, state, &env, tri, rows, cache,
         )
     } else {
-        triangle::draw_inline::<TEX_NONE, true, false, false, false, false>(
-            vram, state, &env, tri, rows,
+        triangle::draw_inline::<TEX_NONE, { mode::OFF }, true, false, false, false, false>(
+            vram, state, &env, tri, rows, cache,
         )
     }
 }
@@ -599,6 +624,7 @@ pub(crate) fn draw_triangle_precise(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
+    cache: &mut TextureCache,
     tri: &Triangle,
     at: &[precise::PreciseVertex; 3],
     perspective: bool,
@@ -608,11 +634,20 @@ pub(crate) fn draw_triangle_precise(
     let raw = tri.texture.is_some_and(|t| t.raw);
     let (b, m, p) = (tri.blend.is_some(), state.mask.check, perspective);
     use precise::draw;
+    let c = cache.mode();
     match texture_kind(tri.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, tri, at); [0,]; false, b, m, false),
-        1 => dispatch!(draw(vram, state, &env, tri, at); [1,]; raw, b, m, p),
-        2 => dispatch!(draw(vram, state, &env, tri, at); [2,]; raw, b, m, p),
-        _ => dispatch!(draw(vram, state, &env, tri, at); [3,]; raw, b, m, p),
+        0 => {
+            dispatch!(draw(vram, state, &env, tri, at, cache); [0, {mode::OFF},]; false, b, m, false)
+        }
+        1 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, at, cache); [1, M,]; raw, b, m, p); OFF, TAGS; COPIES)
+        }
+        2 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, at, cache); [2, M,]; raw, b, m, p); OFF, TAGS; COPIES)
+        }
+        _ => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, tri, at, cache); [3, M,]; raw, b, m, p); OFF, TAGS; COPIES)
+        }
     }
 }
 
@@ -698,6 +733,7 @@ pub(crate) fn draw_tiled_quad(
 pub(crate) fn draw_line_rows(
     vram: &mut Vram,
     state: &DrawState,
+    cache: &mut TextureCache,
     line: &Line,
     rows: Rows,
 ) -> DrawCount {
@@ -728,7 +764,7 @@ pub(crate) fn draw_line_rows(
         state.mask.check,
     );
     use line::draw;
-    dispatch!(draw(vram, state, &env, line, rows); []; g, b, d, m, filtered)
+    dispatch!(draw(vram, state, &env, line, rows, cache); []; g, b, d, m, filtered)
 }
 
 /// Draw a flat, opaque line segment (GP0 40h) from `p[0]` to `p[1]` (offset applied) in
@@ -751,6 +787,7 @@ pub(crate) fn draw_rectangle_rows(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
+    cache: &mut TextureCache,
     rect: &Rectangle,
     rows: Rows,
 ) -> DrawCount {
@@ -771,11 +808,26 @@ pub(crate) fn draw_rectangle_rows(
     }
     let (b, m) = (rect.blend.is_some(), state.mask.check);
     use rectangle::draw;
+    // A rectangle reads its texels along each row in VRAM order: with tags tracked, they
+    // are checked once per run of reads in one entry.
+    let c = match cache.mode() {
+        mode::TAGS => {
+            cache.begin_runs();
+            mode::RUNS
+        }
+        other => other,
+    };
     match texture_kind(rect.texture.as_ref()) {
-        0 => dispatch!(draw(vram, state, &env, rect, rows); [0,]; false, b, m),
-        1 => dispatch!(draw(vram, state, &env, rect, rows); [1,]; raw, b, m),
-        2 => dispatch!(draw(vram, state, &env, rect, rows); [2,]; raw, b, m),
-        _ => dispatch!(draw(vram, state, &env, rect, rows); [3,]; raw, b, m),
+        0 => dispatch!(draw(vram, state, &env, rect, rows, cache); [0, {mode::OFF},]; false, b, m),
+        1 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, rect, rows, cache); [1, M,]; raw, b, m); OFF, RUNS; COPIES)
+        }
+        2 => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, rect, rows, cache); [2, M,]; raw, b, m); OFF, RUNS; COPIES)
+        }
+        _ => {
+            with_cache_mode!(c, M => dispatch!(draw(vram, state, &env, rect, rows, cache); [3, M,]; raw, b, m); OFF, RUNS; COPIES)
+        }
     }
 }
 

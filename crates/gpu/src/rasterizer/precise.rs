@@ -35,9 +35,11 @@ pub struct PreciseVertex {
 }
 
 /// Draw `tri` (colours, texture, blend, dither as for the hardware path) at the sub-pixel
-/// positions `at`, with texture coordinates perspective-correct when `perspective`.
+/// positions `at`, with texture coordinates perspective-correct when `PERSPECTIVE` and texels
+/// read in the texture cache mode `CACHE` (docs/hardware/gpu.md §10).
 pub(super) fn draw<
     const TEX: u8,
+    const CACHE: u8,
     const RAW: bool,
     const BLEND: bool,
     const MASK_CHECK: bool,
@@ -48,6 +50,7 @@ pub(super) fn draw<
     env: &PixelEnv,
     tri: &Triangle,
     at: &[PreciseVertex; 3],
+    cache: &mut crate::texture_cache::TextureCache,
 ) {
     let p = at.map(|v| (v.x as i64, v.y as i64));
     // Same whole-polygon size drop as the hardware, on whole pixels.
@@ -153,7 +156,7 @@ pub(super) fn draw<
             } else {
                 &PLAIN_TABLE
             };
-            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK, CACHE>(
                 vram,
                 row + (x & 1023) as usize,
                 rgb,
@@ -162,6 +165,7 @@ pub(super) fn draw<
                 shade,
                 env,
                 None,
+                cache,
             );
         }
     }

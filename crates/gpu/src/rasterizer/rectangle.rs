@@ -24,13 +24,21 @@ pub(super) fn clip(rect: &Rectangle, area: &DrawingArea) -> Option<(i32, i32, i3
     (x_start < x_end && y_start < y_end).then_some((x_start, x_end, y_start, y_end))
 }
 
-/// Draw with the pixel pipeline fixed by the const parameters.
-pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
+/// Draw with the pixel pipeline fixed by the const parameters, texels read in the texture
+/// cache mode `CACHE` (docs/hardware/gpu.md §10).
+pub(super) fn draw<
+    const TEX: u8,
+    const CACHE: u8,
+    const RAW: bool,
+    const BLEND: bool,
+    const MASK_CHECK: bool,
+>(
     vram: &mut [u16; VRAM_LEN],
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
     filter: super::Rows,
+    cache: &mut crate::texture_cache::TextureCache,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
     let env = *env_ref;
@@ -71,7 +79,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
         let v = o.v.wrapping_add(dv.wrapping_mul((y - y0) as u8));
         let mut u = u_start;
         for x in x_start..x_end {
-            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+            shade_pixel::<TEX, RAW, BLEND, MASK_CHECK, CACHE>(
                 vram,
                 row + x as usize,
                 flat,
@@ -80,6 +88,7 @@ pub(super) fn draw<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK
                 &PLAIN_TABLE,
                 &env,
                 (TEX == 1).then_some(&env.lut),
+                cache,
             );
             u = u.wrapping_add(du);
         }

@@ -13,6 +13,8 @@
 use super::PixelEnv;
 use crate::VRAM_LEN;
 use crate::color::DITHER_MATRIX;
+use crate::texture::texture_halfword;
+use crate::texture_cache::{TextureCache, entry_index_lanes, mode};
 use wide::bytemuck::cast;
 use wide::{i16x8, i32x8, u16x8, u32x8};
 
@@ -80,10 +82,17 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
 /// untextured one its first and last four, two or one, a textured one pixel by pixel.
 /// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
-/// wrapping ([`plain_page`]), so the eight texel addresses are computed together.
+/// wrapping ([`plain_page`]), so the eight texel addresses are computed together. `CACHE`:
+/// texels are read through the texture cache (docs/hardware/gpu.md §10).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const PLAIN: bool>(
+pub(super) fn draw<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const DITHER: bool,
+    const PLAIN: bool,
+    const CACHE: u8,
+>(
     vram: &mut [u16; VRAM_LEN],
     row: usize,
     y: i32,
@@ -93,6 +102,7 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const
     steps: &LaneSteps,
     flat: [i32; 3],
     env: &PixelEnv,
+    cache: &mut TextureCache,
 ) {
     let textured = TEX != super::TEX_NONE;
     let mask_or = i16x8::splat(env.mask_or as i16);
@@ -104,8 +114,10 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const
     } else {
         i16x8::ZERO
     };
-    let group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
-        Group::<TEX, GOURAUD, PLAIN>::shade(vram, env, flat, mask_or, dither, lanes, n)
+    let mut group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
+        Group::<TEX, GOURAUD, PLAIN, CACHE>::shade(
+            vram, cache, env, flat, mask_or, dither, lanes, n,
+        )
     };
     let put = put::<TEX>;
     // Attribute `i` of pixel `x + k` in lane `k`.
@@ -139,16 +151,19 @@ pub(super) fn draw<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const
     }
 }
 
-/// One group of eight pixels of a span; `PLAIN` as for [`draw`].
-struct Group<const TEX: u8, const GOURAUD: bool, const PLAIN: bool>;
+/// One group of eight pixels of a span; `PLAIN` and `CACHE` as for [`draw`].
+struct Group<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>;
 
-impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool> Group<TEX, GOURAUD, PLAIN> {
+impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>
+    Group<TEX, GOURAUD, PLAIN, CACHE>
+{
     /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
     /// their values and their texels (0 past the first `n`, which are not fetched).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn shade(
         vram: &[u16; VRAM_LEN],
+        cache: &mut TextureCache,
         env: &PixelEnv,
         flat: [i16x8; 3],
         mask_or: i16x8,
@@ -175,9 +190,25 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool> Group<TEX, GOURAUD, 
                 2 => (base + (u >> 1), (u & u32x8::splat(1)) << 3),
                 _ => (base + u, u32x8::ZERO),
             };
+            // With the tags tracked, each texel's entry and tag are worked out in the lanes
+            // too (docs/hardware/gpu.md §10).
+            let tags = CACHE == mode::TAGS;
+            let (entry, tag) = if tags {
+                (
+                    entry_index_lanes::<TEX>(address).to_array(),
+                    (address >> 2u32).to_array(),
+                )
+            } else {
+                ([0; LANES], [0; LANES])
+            };
             let (address, shift) = (address.to_array(), shift.to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
-                let word = vram[address[k] as usize & (VRAM_LEN - 1)];
+                let word = if tags {
+                    cache.track_entry(entry[k] as usize, tag[k]);
+                    vram[address[k] as usize & (VRAM_LEN - 1)]
+                } else {
+                    texture_halfword::<TEX, CACHE>(vram, cache, address[k] as usize)
+                };
                 *t = match TEX {
                     1 => s.clut[usize::from((word >> shift[k]) & 0xF)],
                     2 => s.clut[usize::from((word >> shift[k]) & 0xFF)],
@@ -187,7 +218,9 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool> Group<TEX, GOURAUD, 
         } else if textured {
             let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
-                *t = env.sampler.fetch(TEX, vram, u[k] as u8, v[k] as u8);
+                *t = env
+                    .sampler
+                    .fetch::<TEX, CACHE>(vram, cache, u[k] as u8, v[k] as u8);
             }
         }
         let t = i16x8::new(texel.map(|t| t as i16));
@@ -208,6 +241,53 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool> Group<TEX, GOURAUD, 
             | (t & i16x8::splat(i16::MIN))
             | mask_or;
         (cast::<i16x8, u16x8>(out), t, texel)
+    }
+}
+
+/// The texel reads of up to eight consecutive pixels of a span over a page of kind `TEX` (1 =
+/// 4-bit, 3 = 15-bit) that lies inside VRAM under the identity window ([`plain_page`], its
+/// index `page`): the halfwords' addresses `page + v * 1024 + u / 4` (4-bit) or `+ u`
+/// (15-bit), the texel's bit position in it, and the texture cache entry and tag of each
+/// (docs/hardware/gpu.md §7, §10). U and V start at `uv` and step by `duv` (8.24).
+pub(super) struct PlainReads {
+    pub(super) address: [u32; LANES],
+    pub(super) shift: [u32; LANES],
+    pub(super) entry: [u32; LANES],
+    pub(super) tag: [u32; LANES],
+}
+
+impl PlainReads {
+    /// The reads of the eight pixels from (`u`, `v`), the lanes' offsets `steps` (`k * du`,
+    /// `k * dv`) made by [`PlainReads::steps`].
+    #[inline(always)]
+    pub(super) fn new<const TEX: u8>(
+        page: usize,
+        (u, v): (u32, u32),
+        steps: &(u32x8, u32x8),
+    ) -> Self {
+        let (u, v) = (
+            (u32x8::splat(u) + steps.0) >> 24u32,
+            (u32x8::splat(v) + steps.1) >> 24u32,
+        );
+        let base = u32x8::splat(page as u32) + (v << 10u32);
+        let (address, shift) = if TEX == 1 {
+            (base + (u >> 2u32), (u & u32x8::splat(3)) << 2u32)
+        } else {
+            (base + u, u32x8::ZERO)
+        };
+        Self {
+            address: address.to_array(),
+            shift: shift.to_array(),
+            entry: entry_index_lanes::<TEX>(address).to_array(),
+            tag: (address >> 2u32).to_array(),
+        }
+    }
+
+    /// The lanes' offsets from the per-pixel steps `(du, dv)`.
+    #[inline(always)]
+    pub(super) fn steps((du, dv): (u32, u32)) -> (u32x8, u32x8) {
+        let k = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+        (k * u32x8::splat(du), k * u32x8::splat(dv))
     }
 }
 
@@ -337,12 +417,15 @@ mod tests {
     }
 
     /// A modulated (neutral colour 80h, undithered) Gouraud-textured triangle drawn over its
-    /// own 15-bit page, one pixel to the right of the texels it samples: on the console each
-    /// pixel reads the texel its left neighbour has just written, so every row repeats the
-    /// texel left of its first pixel (docs/hardware/gpu.md §6: t5 * 80h >> 4 >> 3 = t5).
+    /// own 15-bit page, one pixel to the right of the texels it samples, with the texture
+    /// cache off: each pixel reads from VRAM the texel its left neighbour has just written,
+    /// so every row repeats the texel left of its first pixel (docs/hardware/gpu.md §6:
+    /// t5 * 80h >> 4 >> 3 = t5). (With the cache on, as on the console, pixels read the
+    /// cached texels instead: tests/texture_cache.rs.)
     #[test]
     fn drawing_over_its_own_texture_reads_pixel_by_pixel() {
         let mut g = Gpu::new();
+        g.set_texture_cache(false);
         let texel = |x: usize, y: usize| (((x + 3 * y) % 31 + 1) | ((y % 31 + 1) << 5)) as u16;
         for y in 0..40 {
             for x in 0..40 {

@@ -1,21 +1,16 @@
 //! Triangle rasterization (docs/hardware/gpu.md §3): core vertex, Y sort, 32.32 edge walking with the
 //! 1<<11 epsilon, spans [left, right), and 8.24 attribute gradients evaluated from the core
 //! vertex.
-//!
-//! Why this shape: the rows of a part are walked by a routine of their own, not inlined into
-//! the set-up (`FlatRows`, `PartRows`), so that the pixel loops keep their registers: with
-//! its rows inlined, the raw 15-bit class took from 8,321 to 8,845 instructions a triangle
-//! as unrelated set-up code changed (a VRAM pointer reloaded at every pixel); out of line,
-//! 8,318 whatever the set-up holds. Flat rows from the positions alone took flat triangles
-//! from 3,204 to 1,536 instructions; the rest of the history is in docs/performance.md
-//! ("What each change bought").
 
 use super::coverage::{Coverage, triangle_coverage};
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, wrap11};
-use crate::color::{DITHER_TABLES, DitheredCells, PLAIN_TABLE};
+use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::BlendMode;
 use crate::state::DrawState;
+use crate::texture::texture_halfword;
+use crate::texture_cache::TextureCache;
+use crate::texture_cache::mode::{self, COPIES};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
 /// `$body` with `$mode` bound to the blend mode `$value`: when `$blend` (a const parameter)
@@ -180,6 +175,19 @@ fn setup<T: Copy>(mut v: [T; 3], at: impl Fn(&T) -> (i32, i32)) -> ([T; 3], Setu
     )
 }
 
+/// The order the console walks a triangle's two parts in (docs/hardware/gpu.md §3.4), as
+/// `(part, upward)` pairs, part 0 the rows `[y0, y1)` and part 1 `[y1, y2)` of the sorted
+/// vertices, `core` the core vertex's sorted position: core 0, both parts downward; core 1,
+/// the lower part downward, then the upper part upward from its bottom row; core 2, the
+/// lower part upward, then the upper part upward. Each row is drawn left to right.
+const fn console_order(core: usize) -> [(usize, bool); 2] {
+    match core {
+        0 => [(0, false), (1, false)],
+        1 => [(1, false), (0, true)],
+        _ => [(1, true), (0, true)],
+    }
+}
+
 /// Truncating division by a triangle's gradient denominator, one hardware divide per
 /// triangle instead of two per attribute: `n / den` (rounded toward zero) as
 /// `(|n| * r) >> 64` with `r = floor(2^64 / |den|) + 1`, exact while `|n| * |den| < 2^64`
@@ -259,7 +267,10 @@ pub(super) fn draw_flat(
         p[0].0.max(p[1].0).max(p[2].0),
     );
     let inside = min_x >= clip.0 && max_x <= clip.1;
-    let stride = rows.stride();
+    let stride = match rows {
+        super::Rows::All => 1,
+        super::Rows::SkipParity(_) => 2,
+    };
     for part in setup.parts {
         let first = rows.first(part.top.max(clip_top));
         let last = part.bottom.min(clip_bottom);
@@ -352,15 +363,15 @@ impl FlatRows {
     }
 }
 
-/// The rows of one part of a triangle, walked by a routine of their own: from row `y` to
-/// `last` (exclusive) every `stride` rows, the span `[l >> 32, r >> 32)` at each clipped to
-/// the columns `clip`, the edges stepping by `dl` and `dr`; `attr` holds the attributes at
-/// column 0 of row `y` and steps by `attr_step` per row walked (docs/hardware/gpu.md
-/// §3.4-§3.6). The routines are not inlined into the triangle set-up, so that their pixel
-/// loops keep their registers whatever the set-up around the call holds.
-struct PartRows {
+/// The rows of one part of a triangle drawn in eight-pixel groups (see [`span::draw`]):
+/// the rows from `y` to `end` (exclusive), `stride` rows apart (negative when walked upward),
+/// `end` a whole number of strides from `y`, the span
+/// `[l >> 32, r >> 32)` at each clipped to the columns `clip`, the edges stepping by `dl`
+/// and `dr`; `attr` holds the attributes at column 0 of row `y` and steps by `attr_step` per
+/// row walked (docs/hardware/gpu.md §3.4-§3.6).
+struct GroupRows {
     y: i32,
-    last: i32,
+    end: i32,
     stride: i32,
     l: i64,
     r: i64,
@@ -371,99 +382,9 @@ struct PartRows {
     attr_step: [u32; 5],
 }
 
-impl PartRows {
-    /// The rows `first..last` (every `stride`-th) of `part`, the attributes `attrs` at
-    /// column 0 of each.
-    #[inline(always)]
-    fn new(
-        part: &Part,
-        (first, last, stride): (i32, i32, i32),
-        attrs: &Attributes,
-        clip: (i32, i32),
-    ) -> Self {
-        let Attributes { cv, origin, grads } = attrs;
-        // Attribute `i` at column 0 of row `first`, 8.24 with 32-bit wrap (§3.6).
-        let dy = first.wrapping_sub(cv.y) as u32;
-        let dx = cv.x.wrapping_neg() as u32;
-        PartRows {
-            y: first,
-            last,
-            stride,
-            l: part.left.at(first),
-            r: part.right.at(first),
-            dl: part.left.step * stride as i64,
-            dr: part.right.step * stride as i64,
-            clip,
-            attr: core::array::from_fn(|i| {
-                origin[i]
-                    .wrapping_add(grads[i].0.wrapping_mul(dx))
-                    .wrapping_add(grads[i].1.wrapping_mul(dy))
-            }),
-            attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
-        }
-    }
-
-    /// [`PartRows::draw`] with its clip and page variants chosen for the sorted vertices
-    /// `v`; returns the pixels drawn.
-    #[inline(always)]
-    fn groups<const TEX: u8, const GOURAUD: bool, const DITHER: bool>(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        v: &[Vtx; 3],
-        step: [u32; 5],
-        flat: [i32; 3],
-        env: &PixelEnv,
-    ) -> u32 {
-        // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
-        // inside the area's columns need no clip.
-        let (a, b, c) = (v[0], v[1], v[2]);
-        let (left, right) = self.clip;
-        let inside = a.x.min(b.x).min(c.x) >= left && a.x.max(b.x).max(c.x) <= right;
-        let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
-        match (inside, plain) {
-            (true, false) => self.draw::<TEX, GOURAUD, DITHER, false, false>(vram, step, flat, env),
-            (false, false) => self.draw::<TEX, GOURAUD, DITHER, true, false>(vram, step, flat, env),
-            (true, true) => self.draw::<TEX, GOURAUD, DITHER, false, true>(vram, step, flat, env),
-            (false, true) => self.draw::<TEX, GOURAUD, DITHER, true, true>(vram, step, flat, env),
-        }
-    }
-
-    /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
-    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel;
-    /// returns what was drawn.
-    #[inline(never)]
-    fn raw15<const BLEND: bool, const MASK_CHECK: bool>(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        duv: (u32, u32),
-        page: usize,
-        mask: (u16, BlendMode),
-    ) -> DrawCount {
-        let mut drawn = DrawCount::default();
-        // Only U and V are read: they alone are stepped.
-        let (mut l, mut r, mut y) = (self.l, self.r, self.y);
-        let (mut u, mut v) = (self.attr[3], self.attr[4]);
-        while y < self.last {
-            let x_start = ((l >> 32) as i32).max(self.clip.0);
-            let x_end = ((r >> 32) as i32).min(self.clip.1);
-            if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let row = ((y & 511) as usize) * VRAM_WIDTH;
-                let at = |a: u32, d: u32| a.wrapping_add(d.wrapping_mul(x_start as u32));
-                let uv = (at(u, duv.0), at(v, duv.1));
-                raw15_span::<BLEND, MASK_CHECK>(vram, (row, x_start, x_end), uv, duv, page, mask);
-            }
-            (l, r) = (l.wrapping_add(self.dl), r.wrapping_add(self.dr));
-            u = u.wrapping_add(self.attr_step[3]);
-            v = v.wrapping_add(self.attr_step[4]);
-            y += self.stride;
-        }
-        drawn
-    }
-
-    /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
-    /// `step` per pixel; returns the pixels drawn. Textured spans under
-    /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+impl GroupRows {
+    /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
+    /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
     fn draw<
         const TEX: u8,
@@ -471,16 +392,18 @@ impl PartRows {
         const DITHER: bool,
         const CLIP: bool,
         const PLAIN: bool,
+        const CACHE: u8,
     >(
         self,
         vram: &mut [u16; VRAM_LEN],
         step: [u32; 5],
         flat: [i32; 3],
         env: &PixelEnv,
+        cache: &mut TextureCache,
     ) -> u32 {
         let Self {
             mut y,
-            last,
+            end,
             stride,
             mut l,
             mut r,
@@ -492,7 +415,7 @@ impl PartRows {
         } = self;
         let lanes = &span::LaneSteps::new(step);
         let mut pixels = 0;
-        while y < last {
+        while y != end {
             let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
             if CLIP {
                 x_start = x_start.max(clip.0);
@@ -507,8 +430,8 @@ impl PartRows {
                     attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
                 });
                 if TEX == TEX_NONE || x_end - x_start >= span::MIN_TEXTURED_PIXELS {
-                    span::draw::<TEX, GOURAUD, DITHER, PLAIN>(
-                        vram, row, y, x_start, x_end, acc, lanes, flat, env,
+                    span::draw::<TEX, GOURAUD, DITHER, PLAIN, CACHE>(
+                        vram, row, y, x_start, x_end, acc, lanes, flat, env, cache,
                     );
                 } else {
                     let dither_row = &DITHER_TABLES[(y & 3) as usize];
@@ -522,7 +445,7 @@ impl PartRows {
                         } else {
                             flat
                         };
-                        shade_pixel::<TEX, false, false, false>(
+                        shade_pixel::<TEX, false, false, false, CACHE>(
                             vram,
                             row + x as usize,
                             rgb,
@@ -535,6 +458,7 @@ impl PartRows {
                             },
                             env,
                             None,
+                            cache,
                         );
                         for (a, s) in acc.iter_mut().zip(step) {
                             *a = a.wrapping_add(s);
@@ -551,9 +475,11 @@ impl PartRows {
     }
 }
 
-/// Draw with the pixel pipeline fixed by the const parameters.
+/// Draw with the pixel pipeline fixed by the const parameters, texels read in the texture
+/// cache mode `CACHE` (docs/hardware/gpu.md §10).
 pub(super) fn draw<
     const TEX: u8,
+    const CACHE: u8,
     const GOURAUD: bool,
     const RAW: bool,
     const BLEND: bool,
@@ -565,20 +491,19 @@ pub(super) fn draw<
     env: &PixelEnv,
     tri: &Triangle,
     rows: super::Rows,
+    cache: &mut TextureCache,
 ) -> DrawCount {
-    draw_inline::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(vram, state, env, tri, rows)
+    draw_inline::<TEX, CACHE, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+        vram, state, env, tri, rows, cache,
+    )
 }
 
 /// [`draw`], inlined into a caller that builds the triangle itself, so that its vertices
-/// need not pass through memory. Its steps: a flat untextured opaque triangle goes to
-/// [`draw_flat`]; otherwise the vertices wrapped with the attributes the pipeline
-/// interpolates ([`wrapped_vertices`]), the coverage tests, core vertex, sort and edges
-/// ([`setup`]), the attribute gradients ([`Attributes`]) and the span routine
-/// ([`SpanPlan`]); then each part's rows in eight-pixel groups ([`PartRows::groups`]), as a
-/// raw 15-bit page ([`PartRows::raw15`]) or span by span ([`span_pixels`]).
+/// need not pass through memory.
 #[inline(always)]
 pub(super) fn draw_inline<
     const TEX: u8,
+    const CACHE: u8,
     const GOURAUD: bool,
     const RAW: bool,
     const BLEND: bool,
@@ -590,6 +515,7 @@ pub(super) fn draw_inline<
     env: &PixelEnv,
     tri: &Triangle,
     rows: super::Rows,
+    cache: &mut TextureCache,
 ) -> DrawCount {
     if TEX == TEX_NONE && !GOURAUD && !BLEND && !MASK_CHECK && !DITHER {
         let color = super::flat_color(tri.vertices[0].color.map(i32::from), env.mask_or);
@@ -597,87 +523,10 @@ pub(super) fn draw_inline<
         return draw_flat(vram, state, p, color, env.line, rows);
     }
     let mut drawn = DrawCount::default();
-    let verts = wrapped_vertices::<TEX, GOURAUD>(tri);
-    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
-    let corners = verts.map(|v| (v.x, v.y));
-    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
-        return drawn;
-    }
-    let (v, setup) = setup(verts, |v| (v.x, v.y));
-    let attrs = Attributes::new::<TEX, GOURAUD>(&v, setup.core);
-    let flat = tri.vertices[0].color.map(|c| c as i32);
-    let area = state.area;
-    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
-    let clip = (area.left as i32, area.right as i32 + 1);
-    // Per-triangle copies, so the row and pixel loops keep them in registers.
-    let env = *env;
-    let step = attrs.grads.map(|g| g.0);
-    let plan = SpanPlan::new::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-        &env,
-        &v,
-        (clip_top, clip_bottom, clip.0, clip.1),
-    );
-    let stride = rows.stride();
-    for part in setup.parts {
-        let first = rows.first(part.top.max(clip_top));
-        let last = part.bottom.min(clip_bottom);
-        if first >= last {
-            continue;
-        }
-        drawn.rows += rows.count(first, last);
-        if plan.groups || plan.raw15_page.is_some() {
-            let walk = PartRows::new(&part, (first, last, stride), &attrs, clip);
-            if let Some(page) = plan.raw15_page {
-                let mask = (env.mask_or, env.blend);
-                let d = walk.raw15::<BLEND, MASK_CHECK>(vram, (step[3], step[4]), page, mask);
-                (drawn.pixels, drawn.pairs) = (drawn.pixels + d.pixels, drawn.pairs + d.pairs);
-            } else {
-                drawn.pixels += walk.groups::<TEX, GOURAUD, DITHER>(vram, &v, step, flat, &env);
-            }
-            continue;
-        }
-        let (mut l, mut r) = (part.left.at(first), part.right.at(first));
-        let (dl, dr) = (
-            part.left.step * stride as i64,
-            part.right.step * stride as i64,
-        );
-        let mut y = first;
-        while y < last {
-            let x_start = ((l >> 32) as i32).max(clip.0);
-            let x_end = ((r >> 32) as i32).min(clip.1);
-            l += dl;
-            r += dr;
-            if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let acc = attrs.at::<TEX, GOURAUD>(x_start, y);
-                let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
-                span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-                    vram,
-                    span,
-                    (acc, step),
-                    flat,
-                    &plan,
-                    &env,
-                );
-            }
-            y += stride;
-        }
-    }
-    drawn
-}
-
-/// Whether the pipeline interpolates attribute `i` (0-2 colour, 3-4 U and V).
-#[inline(always)]
-const fn used<const TEX: u8, const GOURAUD: bool>(i: usize) -> bool {
-    (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3)
-}
-
-/// The triangle's vertices wrapped to 11 bits (docs/hardware/gpu.md §3.5), with the
-/// attributes the pipeline does not interpolate 0, so that the Y sort does not carry them.
-#[inline(always)]
-fn wrapped_vertices<const TEX: u8, const GOURAUD: bool>(tri: &Triangle) -> [Vtx; 3] {
+    // Attributes the pipeline does not interpolate are 0, so that the Y sort does not
+    // carry them.
     let (shaded, textured) = (GOURAUD, TEX != TEX_NONE);
-    tri.vertices.map(|p| Vtx {
+    let verts = tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
@@ -687,204 +536,236 @@ fn wrapped_vertices<const TEX: u8, const GOURAUD: bool>(tri: &Triangle) -> [Vtx;
             if textured { p.u as i32 } else { 0 },
             if textured { p.v as i32 } else { 0 },
         ],
-    })
-}
-
-/// A triangle's attributes (0-2 colour, 3-4 U and V): the core vertex, their 8.24 values
-/// there and their gradients per column and per row (docs/hardware/gpu.md §3.6).
-struct Attributes {
-    cv: Vtx,
-    origin: [u32; 5],
-    /// (d/dx, d/dy) of each attribute; 0 for those not interpolated.
-    grads: [(u32, u32); 5],
-}
-
-impl Attributes {
-    /// The set-up of the sorted vertices `v` with the core vertex at `core`.
-    #[inline(always)]
-    fn new<const TEX: u8, const GOURAUD: bool>(v: &[Vtx; 3], core: usize) -> Self {
-        let (a, b, c) = (v[0], v[1], v[2]);
-        // A select, not an index: the sorted vertices then stay in registers.
-        let cv = match core {
-            0 => a,
-            1 => b,
-            _ => c,
-        };
-        let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
-        let mut grads = [(0u32, 0u32); 5];
-        let mut origin = [0u32; 5];
-        let divisor = Divisor::new(den);
-        for i in 0..5 {
-            if used::<TEX, GOURAUD>(i) {
-                grads[i] = gradient(v, i, divisor);
-            }
-            origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
-        }
-        Self { cv, origin, grads }
+    });
+    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
+    let corners = verts.map(|v| (v.x, v.y));
+    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
+        return drawn;
     }
-
-    /// The attributes the pipeline interpolates at pixel (`x`, `y`), 8.24 with 32-bit
-    /// wrap; the others 0.
-    #[inline(always)]
-    fn at<const TEX: u8, const GOURAUD: bool>(&self, x: i32, y: i32) -> [u32; 5] {
-        let dx = x.wrapping_sub(self.cv.x) as u32;
-        let dy = y.wrapping_sub(self.cv.y) as u32;
-        let mut acc = [0u32; 5];
-        for (i, a) in acc.iter_mut().enumerate() {
-            if used::<TEX, GOURAUD>(i) {
-                *a = self.origin[i]
-                    .wrapping_add(self.grads[i].0.wrapping_mul(dx))
-                    .wrapping_add(self.grads[i].1.wrapping_mul(dy));
-            }
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
+    let (a, b, c) = (v[0], v[1], v[2]);
+    // A select, not an index: the sorted vertices then stay in registers.
+    let cv = match setup.core {
+        0 => a,
+        1 => b,
+        _ => c,
+    };
+    let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
+    // Attribute set-up: 0-2 colour, 3-4 UV.
+    let mut grads = [(0u32, 0u32); 5];
+    let mut origin = [0u32; 5];
+    let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
+    let divisor = Divisor::new(den);
+    for i in 0..5 {
+        if used(i) {
+            grads[i] = gradient(&v, i, divisor);
         }
-        acc
+        origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
     }
-}
-
-/// How a triangle's spans are drawn, chosen once per triangle.
-struct SpanPlan<'a> {
-    /// In eight-pixel groups ([`PartRows::groups`]).
-    groups: bool,
-    /// A flat-modulated dithered 4-bit texture's CLUT shaded for every dither cell.
-    dithered: Option<&'a DitheredCells>,
-    /// A 4-bit page the window and VRAM wraps leave alone (`span::plain_page`).
-    plain_page: Option<usize>,
-    /// A raw 15-bit page the window and VRAM wraps leave alone.
-    raw15_page: Option<usize>,
-}
-
-impl<'a> SpanPlan<'a> {
-    /// The plan for the sorted vertices `v` clipped to rows `top..bottom` and columns
-    /// `left..right`, under the pipeline of the const parameters.
-    #[inline(always)]
-    fn new<
-        const TEX: u8,
-        const GOURAUD: bool,
-        const RAW: bool,
-        const BLEND: bool,
-        const DITHER: bool,
-        const MASK_CHECK: bool,
-    >(
-        env: &PixelEnv<'a>,
-        v: &[Vtx; 3],
-        (top, bottom, left, right): (i32, i32, i32, i32),
-    ) -> Self {
-        let (a, b, c) = (v[0], v[1], v[2]);
-        // Opaque, unmasked spans whose pixels each need their own colour or texel go eight
-        // at a time; a 4-bit texture under one colour keeps its shaded CLUT instead
-        // (undithered, or dithered with the table of every dither cell,
-        // `PixelEnv::dithered`, at hand). Raw textures need no colour maths and stay pixel by
-        // pixel, as does a primitive that may read texels it has itself written (see
-        // `span::texture_clear_of`).
-        let dithered = if TEX == 1 && !GOURAUD && DITHER {
-            env.dithered
-        } else {
-            None
-        };
-        let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
-        let groups = !BLEND
-            && !MASK_CHECK
-            && !RAW
-            && (GOURAUD || TEX != TEX_NONE)
-            && !shaded_clut
-            && (TEX == TEX_NONE || {
-                let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
-                span::texture_clear_of(
-                    &env.sampler,
-                    TEX,
-                    (xs.0.max(left), xs.1.min(right)),
-                    (a.y.max(top), c.y.min(bottom)),
-                )
-            });
-        // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or
-        // raw 15-bit span reads texel (u, v) from the halfword at its index plus
-        // v * 1024 + u / 4 or + u, and eight-pixel groups compute their eight texel
-        // addresses together.
-        let plain_page = if TEX == 1 {
-            span::plain_page(&env.sampler, TEX)
-        } else {
-            None
-        };
-        let raw15_page = if TEX == 3 && RAW {
-            span::plain_page(&env.sampler, TEX)
-        } else {
-            None
-        };
-        Self {
-            groups,
-            dithered,
-            plain_page,
-            raw15_page,
-        }
-    }
-}
-
-/// The span `[x_start, x_end)` of line `y` (VRAM row offset `row`), its attributes at
-/// `x_start` and their steps `(acc, step)`, with one copy of the pixel loop per table kind,
-/// chosen per span by `plan`.
-#[inline(always)]
-fn span_pixels<
-    const TEX: u8,
-    const GOURAUD: bool,
-    const RAW: bool,
-    const BLEND: bool,
-    const DITHER: bool,
-    const MASK_CHECK: bool,
->(
-    vram: &mut [u16; VRAM_LEN],
-    span: (usize, i32, i32, i32),
-    (acc, step): ([u32; 5], [u32; 5]),
-    flat: [i32; 3],
-    plan: &SpanPlan,
-    env: &PixelEnv,
-) {
-    let (row, y, x_start, x_end) = span;
-    let (uv, duv, mask) = (
-        (acc[3], acc[4]),
-        (step[3], step[4]),
-        (env.mask_or, env.blend),
-    );
-    let line = (y & 3) as usize;
-    match (plan.dithered, plan.plain_page) {
-        (Some(c), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true>(
-            vram,
-            (row, x_start, x_end),
-            uv,
-            duv,
-            page,
-            (&c[line], &env.lut),
-            mask,
-        ),
-        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
-            clut4_span::<BLEND, MASK_CHECK, false>(
-                vram,
-                (row, x_start, x_end),
-                uv,
-                duv,
-                page,
-                (&NO_CELLS, &env.lut),
-                mask,
+    let flat = tri.vertices[0].color.map(|c| c as i32);
+    let area = state.area;
+    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
+    let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
+    // Per-triangle copies, so the row and pixel loops keep them in registers.
+    let env = *env;
+    let step = grads.map(|g| g.0);
+    // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
+    // time; a 4-bit texture under one colour keeps its shaded CLUT instead (undithered, or
+    // dithered with the table of every dither cell, `PixelEnv::dithered`, at hand).
+    // Raw textures need no colour maths and stay pixel by pixel, as does a primitive that
+    // may read texels it has itself written (see `span::texture_clear_of`).
+    let dithered = if TEX == 1 && !GOURAUD && DITHER {
+        env.dithered
+    } else {
+        None
+    };
+    let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
+    // Reads from the cache's copies go pixel by pixel: a rare mode (docs/gpu.md, "Texture
+    // cache") that the fast paths below need not be built for.
+    let copies = CACHE == COPIES;
+    let groups = !copies
+        && !BLEND
+        && !MASK_CHECK
+        && !RAW
+        && (GOURAUD || TEX != TEX_NONE)
+        && !shaded_clut
+        && (TEX == TEX_NONE || {
+            let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
+            span::texture_clear_of(
+                &env.sampler,
+                TEX,
+                (xs.0.max(clip_left), xs.1.min(clip_right)),
+                (a.y.max(clip_top), c.y.min(clip_bottom)),
             )
+        });
+    // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or raw
+    // 15-bit span reads texel (u, v) from the halfword at its index plus v * 1024 + u / 4 or
+    // + u, and eight-pixel groups compute their eight texel addresses together.
+    let plain_page = if TEX == 1 && !copies {
+        span::plain_page(&env.sampler, TEX)
+    } else {
+        None
+    };
+    let raw15_page = if TEX == 3 && RAW && !copies {
+        span::plain_page(&env.sampler, TEX)
+    } else {
+        None
+    };
+
+    let every = match rows {
+        super::Rows::All => 1,
+        super::Rows::SkipParity(_) => 2,
+    };
+    // Rows are independent, so they are walked top-down, except where a texel read can
+    // change what a later one sees: through the texture cache, in the console's order (§3.4).
+    let order = if CACHE != crate::texture_cache::mode::OFF && TEX != TEX_NONE {
+        console_order(setup.core)
+    } else {
+        [(0, false), (1, false)]
+    };
+    for (part, upward) in order {
+        let Part {
+            top,
+            bottom,
+            left,
+            right,
+        } = setup.parts[part];
+        let first = rows.first(top.max(clip_top));
+        let last = bottom.min(clip_bottom);
+        if first >= last {
+            continue;
         }
-        (Some(c), None) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-            vram,
-            span,
-            acc,
-            step,
-            flat,
-            env,
-            Some(&c[line]),
-        ),
-        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-            vram, span, acc, step, flat, env, None,
-        ),
+        drawn.rows += rows.count(first, last);
+        let count = (last - first + every - 1) / every;
+        let (start, stride) = if upward {
+            (first + (count - 1) * every, -every)
+        } else {
+            (first, every)
+        };
+        let (mut l, mut r) = (left.at(start), right.at(start));
+        let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
+        if groups {
+            // Attribute `i` at column 0 of row `start`, 8.24 with 32-bit wrap (§3.6).
+            let dy = start.wrapping_sub(cv.y) as u32;
+            let dx = cv.x.wrapping_neg() as u32;
+            let walk = GroupRows {
+                y: start,
+                end: start + count * stride,
+                stride,
+                l,
+                r,
+                dl,
+                dr,
+                clip: (clip_left, clip_right),
+                attr: core::array::from_fn(|i| {
+                    origin[i]
+                        .wrapping_add(grads[i].0.wrapping_mul(dx))
+                        .wrapping_add(grads[i].1.wrapping_mul(dy))
+                }),
+                attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
+            };
+            // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
+            // inside the area's columns need no clip.
+            let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
+            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
+            drawn.pixels += match (inside, plain) {
+                (true, false) => walk.draw::<TEX, GOURAUD, DITHER, false, false, CACHE>(
+                    vram, step, flat, &env, cache,
+                ),
+                (false, false) => walk.draw::<TEX, GOURAUD, DITHER, true, false, CACHE>(
+                    vram, step, flat, &env, cache,
+                ),
+                (true, true) => walk.draw::<TEX, GOURAUD, DITHER, false, true, CACHE>(
+                    vram, step, flat, &env, cache,
+                ),
+                (false, true) => walk
+                    .draw::<TEX, GOURAUD, DITHER, true, true, CACHE>(vram, step, flat, &env, cache),
+            };
+            continue;
+        }
+        let mut y = start;
+        for _ in 0..count {
+            let x_start = ((l >> 32) as i32).max(clip_left);
+            let x_end = ((r >> 32) as i32).min(clip_right);
+            l += dl;
+            r += dr;
+            if x_start < x_end {
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                {
+                    let dx = x_start.wrapping_sub(cv.x) as u32;
+                    let dy = y.wrapping_sub(cv.y) as u32;
+                    let mut acc = [0u32; 5];
+                    for i in 0..5 {
+                        if used(i) {
+                            acc[i] = origin[i]
+                                .wrapping_add(grads[i].0.wrapping_mul(dx))
+                                .wrapping_add(grads[i].1.wrapping_mul(dy));
+                        }
+                    }
+                    let span = (row, y, x_start, x_end);
+                    if let Some(page) = raw15_page {
+                        raw15_span::<BLEND, MASK_CHECK, CACHE>(
+                            vram,
+                            (row, x_start, x_end),
+                            (acc[3], acc[4]),
+                            (step[3], step[4]),
+                            (page, &mut *cache),
+                            (env.mask_or, env.blend),
+                        );
+                        y += stride;
+                        continue;
+                    }
+                    // One copy of the pixel loop per table kind, chosen per span.
+                    match (dithered, plain_page) {
+                        (Some(cells), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true, CACHE>(
+                            vram,
+                            (row, x_start, x_end),
+                            (acc[3], acc[4]),
+                            (step[3], step[4]),
+                            (page, &mut *cache),
+                            (&cells[(y & 3) as usize], &env.lut),
+                            (env.mask_or, env.blend),
+                        ),
+                        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
+                            clut4_span::<BLEND, MASK_CHECK, false, CACHE>(
+                                vram,
+                                (row, x_start, x_end),
+                                (acc[3], acc[4]),
+                                (step[3], step[4]),
+                                (page, &mut *cache),
+                                (&NO_CELLS, &env.lut),
+                                (env.mask_or, env.blend),
+                            )
+                        }
+                        (Some(cells), None) => {
+                            pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                                vram,
+                                span,
+                                acc,
+                                step,
+                                flat,
+                                &env,
+                                Some(&cells[(y & 3) as usize]),
+                                cache,
+                            )
+                        }
+                        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                            vram, span, acc, step, flat, &env, None, cache,
+                        ),
+                    }
+                }
+            }
+            y += stride;
+        }
     }
+    drawn
 }
 
 /// Shade `[x_start, x_end)` of line `y` (VRAM row offset `row`) pixel by pixel from the
 /// attributes `acc` at `x_start`, stepped by `step`. `cells` holds the shaded CLUT entries of
 /// this line's four dither cells for a dithered 4-bit texture under one colour
-/// ([`crate::color::dithered_clut4`]); an undithered one reads `env.lut`.
+/// ([`super::dithered_clut4`]); an undithered one reads `env.lut`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn pixels<
@@ -894,6 +775,7 @@ fn pixels<
     const BLEND: bool,
     const DITHER: bool,
     const MASK_CHECK: bool,
+    const CACHE: u8,
 >(
     vram: &mut [u16; VRAM_LEN],
     (row, y, x_start, x_end): (usize, i32, i32, i32),
@@ -902,6 +784,7 @@ fn pixels<
     flat: [i32; 3],
     env: &PixelEnv,
     cells: Option<&[[u32; 16]; 4]>,
+    cache: &mut TextureCache,
 ) {
     let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
     let dither_row = &DITHER_TABLES[(y & 3) as usize];
@@ -920,7 +803,7 @@ fn pixels<
             None if TEX == 1 && !GOURAUD && !DITHER => Some(&env.lut),
             None => None,
         };
-        shade_pixel::<TEX, RAW, BLEND, MASK_CHECK>(
+        shade_pixel::<TEX, RAW, BLEND, MASK_CHECK, CACHE>(
             vram,
             row + x as usize,
             rgb,
@@ -933,6 +816,7 @@ fn pixels<
             },
             env,
             lut,
+            cache,
         );
         for i in 0..5 {
             if used(i) {
@@ -948,41 +832,69 @@ static NO_CELLS: [[u32; 16]; 4] = [[0; 16]; 4];
 /// Shade `[x_start, x_end)` of the VRAM line at `row` for a 4-bit texture under one colour,
 /// the identity window and a page inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
 /// its texel's CLUT entry read from a shaded table, that of its dither cell among this line's
-/// four (`CELLS`, [`crate::color::dithered_clut4`]) or the one undithered table
-/// ([`crate::color::shaded_clut4`]); the texel index is read from the halfword
-/// `page + v * 1024 + u / 4`. U and V start at `uv` and step by `duv` (8.24).
+/// four (`CELLS`, [`super::dithered_clut4`]) or the one undithered table
+/// ([`super::shaded_clut4`]); the texel index is read from the halfword
+/// `page + v * 1024 + u / 4`, through the texture cache when `CACHE` (§10). U and V start at
+/// `uv` and step by `duv` (8.24).
 #[inline(always)]
-fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     span: (usize, i32, i32),
     uv: (u32, u32),
     duv: (u32, u32),
-    page: usize,
+    page: (usize, &mut TextureCache),
     tables: (&[[u32; 16]; 4], &[u32; 16]),
     (mask_or, blend): (u16, BlendMode),
 ) {
     with_blend_mode!(BLEND, blend, mode => {
-        clut4_pixels::<BLEND, MASK_CHECK, CELLS>(vram, span, uv, duv, page, tables, (mask_or, mode))
+        clut4_pixels::<BLEND, MASK_CHECK, CELLS, CACHE>(
+            vram, span, uv, duv, page, tables, (mask_or, mode),
+        )
     });
 }
 
 /// [`clut4_span`]'s pixel loop, for one blend mode.
 #[inline(always)]
-fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
-    page: usize,
+    (page, cache): (usize, &mut TextureCache),
     (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
     (mask_or, blend): (u16, BlendMode),
 ) {
     // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
     let cells = cells.as_flattened();
     let mut cell = ((x_start & 3) as usize) << 4;
+    if CACHE == mode::TAGS {
+        // With the tags tracked, eight pixels' reads are worked out at a time.
+        let steps = span::PlainReads::steps((du, dv));
+        let mut x = x_start;
+        while x < x_end {
+            let r = span::PlainReads::new::<1>(page, (u, v), &steps);
+            for k in 0..((x_end - x) as usize).min(8) {
+                cache.track_entry(r.entry[k] as usize, r.tag[k]);
+                let word = vram[r.address[k] as usize & (VRAM_LEN - 1)];
+                let texel = usize::from((word >> r.shift[k]) & 0xF);
+                let e = if CELLS {
+                    cells[(cell | texel) & 63]
+                } else {
+                    lut[texel]
+                };
+                let at = row + x as usize + k;
+                super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
+                cell = (cell + 16) & 48;
+            }
+            u = u.wrapping_add(du.wrapping_mul(8));
+            v = v.wrapping_add(dv.wrapping_mul(8));
+            x += 8;
+        }
+        return;
+    }
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
-        let word = vram[(page + tv * VRAM_WIDTH + (tu >> 2)) & (VRAM_LEN - 1)];
+        let word = texture_halfword::<1, CACHE>(vram, cache, page + tv * VRAM_WIDTH + (tu >> 2));
         let texel = usize::from((word >> ((tu & 3) * 4)) & 0xF);
         let e = if CELLS {
             cells[(cell | texel) & 63]
@@ -998,36 +910,59 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
 
 /// Write `[x_start, x_end)` of the VRAM line at `row` from a raw 15-bit texture under the
 /// identity window whose page lies inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
-/// its texel, the halfword `page + v * 1024 + u`, unmodulated; a texel of 0000h leaves the
-/// pixel as it is, and bit 15 of the others selects blending. U and V start at `uv` and step
-/// by `duv` (8.24).
+/// its texel, the halfword `page + v * 1024 + u` (through the texture cache when `CACHE`,
+/// §10), unmodulated; a texel of 0000h leaves the pixel as it is, and bit 15 of the others
+/// selects blending. U and V start at `uv` and step by `duv` (8.24).
 #[inline(always)]
-fn raw15_span<const BLEND: bool, const MASK_CHECK: bool>(
+fn raw15_span<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     span: (usize, i32, i32),
     uv: (u32, u32),
     duv: (u32, u32),
-    page: usize,
+    page: (usize, &mut TextureCache),
     (mask_or, blend): (u16, BlendMode),
 ) {
     with_blend_mode!(BLEND, blend, mode => {
-        raw15_pixels::<BLEND, MASK_CHECK>(vram, span, uv, duv, page, (mask_or, mode))
+        raw15_pixels::<BLEND, MASK_CHECK, CACHE>(vram, span, uv, duv, page, (mask_or, mode))
     });
 }
 
 /// [`raw15_span`]'s pixel loop, for one blend mode.
 #[inline(always)]
-fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool>(
+fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
-    page: usize,
+    (page, cache): (usize, &mut TextureCache),
     (mask_or, blend): (u16, BlendMode),
 ) {
+    if CACHE == mode::TAGS {
+        // With the tags tracked, eight pixels' reads are worked out at a time.
+        let steps = span::PlainReads::steps((du, dv));
+        let mut x = x_start;
+        while x < x_end {
+            let r = span::PlainReads::new::<3>(page, (u, v), &steps);
+            for k in 0..((x_end - x) as usize).min(8) {
+                cache.track_entry(r.entry[k] as usize, r.tag[k]);
+                let texel = vram[r.address[k] as usize & (VRAM_LEN - 1)];
+                let e = if texel == 0 {
+                    0
+                } else {
+                    0x1_0000 | u32::from(texel)
+                };
+                let at = row + x as usize + k;
+                super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
+            }
+            u = u.wrapping_add(du.wrapping_mul(8));
+            v = v.wrapping_add(dv.wrapping_mul(8));
+            x += 8;
+        }
+        return;
+    }
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
-        let texel = vram[(page + tv * VRAM_WIDTH + tu) & (VRAM_LEN - 1)];
+        let texel = texture_halfword::<3, CACHE>(vram, cache, page + tv * VRAM_WIDTH + tu);
         let e = if texel == 0 {
             0
         } else {
