@@ -299,7 +299,7 @@ impl TextureCache {
     /// Take the resident entries' copies from `vram` and read them from then on.
     #[cold]
     pub(crate) fn keep_copies(&mut self, vram: &[u16; VRAM_LEN]) {
-        if !self.enabled || self.copies {
+        if !self.enabled || self.copies || self.resident == Resident::Nowhere {
             return;
         }
         for (&tag, data) in self.tags.iter().zip(&mut self.data) {
