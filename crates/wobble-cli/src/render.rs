@@ -239,6 +239,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         divide_mode: args.divide.map_or(accuracy.divide, DivideMode::from),
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
+        texture_cache: true,
     };
     // The last frame's image: -o, else wobble.png unless --inspect writes a report instead.
     let output = match (&args.output, &args.inspect) {

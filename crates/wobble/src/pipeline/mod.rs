@@ -116,6 +116,7 @@ impl Renderer {
         scene.validate().map_err(RenderError::Scene)?;
         let mut gpu = Gpu::new();
         gpu.gp1(GP1_RESET);
+        gpu.set_texture_cache(options.texture_cache);
         let placements = upload::upload_textures(&mut gpu, &scene).map_err(RenderError::Vram)?;
         let objects: Vec<PreparedObject> = (0..scene.objects.len())
             .filter_map(|i| {

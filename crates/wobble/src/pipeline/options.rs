@@ -10,7 +10,7 @@ use std::fmt;
 pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
 
 /// Knobs, all defaulting to what the scene says and to hardware behaviour.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PipelineOptions {
     /// Override every object's tessellation level (0..=4).
     pub tessellation: Option<u8>,
@@ -28,6 +28,9 @@ pub struct PipelineOptions {
     /// Non-hardware: perspective-correct texture coordinates (the precise path with 1/SZ
     /// per vertex) instead of the GPU's affine stepping.
     pub perspective_uv: bool,
+    /// The GPU's texture cache (on, as on the console; `gpu::Gpu::set_texture_cache`): off,
+    /// texels are read straight from VRAM and cache misses cost no drawing time.
+    pub texture_cache: bool,
 }
 
 impl PipelineOptions {
@@ -84,3 +87,18 @@ impl fmt::Display for UnsupportedKnob {
 }
 
 impl std::error::Error for UnsupportedKnob {}
+
+impl Default for PipelineOptions {
+    /// What the scene says, with the hardware's behaviour (the texture cache on).
+    fn default() -> Self {
+        Self {
+            tessellation: None,
+            split_extent: None,
+            dither: None,
+            divide_mode: DivideMode::default(),
+            subpixel: false,
+            perspective_uv: false,
+            texture_cache: true,
+        }
+    }
+}

@@ -29,7 +29,8 @@ use std::path::PathBuf;
 /// The knob a report row turns, relative to the hardware-exact configuration.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum Knob {
-    /// No knob: UNR divide, snapped vertices, affine UVs, dithering, no tessellation.
+    /// No knob: UNR divide, snapped vertices, affine UVs, dithering, no tessellation, the
+    /// texture cache on.
     #[default]
     Hardware,
     /// Exact integer division instead of the UNR divide.
@@ -46,11 +47,13 @@ pub enum Knob {
     SubpixelPerspective,
     /// Tessellation to this level.
     Tessellation(u8),
+    /// The GPU's texture cache off: no stale texels, no miss time.
+    TextureCacheOff,
 }
 
 impl Knob {
     /// Every row of the report, in report order: the hardware-exact configuration first.
-    pub const ALL: [Knob; 11] = [
+    pub const ALL: [Knob; 12] = [
         Knob::Hardware,
         Knob::DivideExact,
         Knob::DivideF32,
@@ -62,6 +65,7 @@ impl Knob {
         Knob::Tessellation(2),
         Knob::Tessellation(3),
         Knob::Tessellation(4),
+        Knob::TextureCacheOff,
     ];
 
     /// The row's label in the report.
@@ -79,6 +83,7 @@ impl Knob {
             Knob::Tessellation(3) => "tessellation 3",
             Knob::Tessellation(4) => "tessellation 4",
             Knob::Tessellation(_) => "tessellation",
+            Knob::TextureCacheOff => "texture cache off",
         }
     }
 
@@ -122,6 +127,10 @@ impl Knob {
             },
             Knob::Tessellation(level) => PipelineOptions {
                 tessellation: Some(level),
+                ..hw
+            },
+            Knob::TextureCacheOff => PipelineOptions {
+                texture_cache: false,
                 ..hw
             },
         }
