@@ -736,3 +736,65 @@ fn rewind_and_run_ahead_every_frame() {
         assert!(rewound == *end, "frame {f} replayed");
     }
 }
+
+/// A GPU whose texture cache holds an entry made stale by a fill: texel (0, 0) of the 15-bit
+/// page at (512, 0) cached as 0421h, VRAM under it 7C1Fh.
+fn stale_cache() -> Gpu {
+    let mut g = Gpu::new();
+    g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000, 0xE100_0108]);
+    g.gp0_words(&[0x0208_0808, xy(512, 0), 1 << 16 | 16]);
+    g.gp0_words(&[0x6D00_0000, xy(0, 480), 0]);
+    g.gp0_words(&[0x02F8_00F8, xy(512, 0), 1 << 16 | 16]);
+    g
+}
+
+/// The cache's tags, copies and miss count survive a save: the restored GPU still draws the
+/// stale texel (docs/hardware/gpu.md §10) and its next misses cost the same.
+#[test]
+fn texture_cache_survives_a_save() {
+    let mut reference = stale_cache();
+    let mut restored = load(&save(&reference)).expect("loads");
+    assert_eq!(restored.texture_cache_misses(), reference.texture_cache_misses());
+    for g in [&mut reference, &mut restored] {
+        g.gp0_words(&[0x6D00_0000, xy(1, 480), 0]);
+        assert_eq!(g.vram().pixel(1, 480), 0x0421);
+        g.gp0_words(&[0x7D00_0000, xy(16, 480), 16]);
+    }
+    assert_eq!(restored.texture_cache_misses(), reference.texture_cache_misses());
+    assert_eq!(save(&restored), save(&reference));
+}
+
+/// Texture cache fields the GPU cannot reach are refused with their reason.
+#[test]
+fn unreachable_texture_cache_fields_are_refused() {
+    let base = body_json(&stale_cache());
+    assert!(serde_json::from_value::<Gpu>(base.clone()).is_ok());
+    // Texel (600, 300) of a 15-bit page: entry 102 (docs/hardware/gpu.md §10), tag a / 4.
+    let a = 300 * 1024 + 600;
+    type Edit = fn(&mut serde_json::Value);
+    let cases: [(&str, Edit); 5] = [
+        ("256 entries", |v| {
+            v["texture_cache"]["data"].as_array_mut().unwrap().pop();
+        }),
+        ("tag its entry cannot hold", |v| {
+            v["texture_cache"]["tags"][0] = 5.into()
+        }),
+        ("off but not empty", |v| {
+            v["texture_cache"]["enabled"] = false.into()
+        }),
+        ("page's corner", |v| {
+            v["texture_cache"]["resident"] = serde_json::json!({"Page": {"x": 100, "y": 0}})
+        }),
+        ("outside the page", |v| {
+            v["texture_cache"]["copies"] = false.into();
+            v["texture_cache"]["tags"][102] = ((300 * 1024 + 600) / 4).into()
+        }),
+    ];
+    assert_eq!(((a >> 2) & 7) | ((a >> 7) & 0xF8), 102);
+    for (reason, edit) in cases {
+        let mut v = base.clone();
+        edit(&mut v);
+        let err = serde_json::from_value::<Gpu>(v).unwrap_err().to_string();
+        assert!(err.contains(reason), "expected {reason:?}, got {err}");
+    }
+}
