@@ -754,13 +754,19 @@ fn stale_cache() -> Gpu {
 fn texture_cache_survives_a_save() {
     let mut reference = stale_cache();
     let mut restored = load(&save(&reference)).expect("loads");
-    assert_eq!(restored.texture_cache_misses(), reference.texture_cache_misses());
+    assert_eq!(
+        restored.texture_cache_misses(),
+        reference.texture_cache_misses()
+    );
     for g in [&mut reference, &mut restored] {
         g.gp0_words(&[0x6D00_0000, xy(1, 480), 0]);
         assert_eq!(g.vram().pixel(1, 480), 0x0421);
         g.gp0_words(&[0x7D00_0000, xy(16, 480), 16]);
     }
-    assert_eq!(restored.texture_cache_misses(), reference.texture_cache_misses());
+    assert_eq!(
+        restored.texture_cache_misses(),
+        reference.texture_cache_misses()
+    );
     assert_eq!(save(&restored), save(&reference));
 }
 
