@@ -268,23 +268,12 @@ fn blocks_at_8_bit() {
     assert_eq!(sample(&mut g, (32, 0), c), 0x0101, "entry 4, still stale");
 }
 
-/// Draw units to GPU cycles, rounded up (11/14 GPU cycle a unit; docs/emulator.md,
-/// "Drawing time").
-fn gpu_cycles(units: u32) -> u32 {
-    (units * 11).div_ceil(14)
-}
-
-/// GPU cycles to CPU cycles from a fresh GPU's clock, rounded up (7/11).
-fn cpu_cycles(gpu: u32) -> u32 {
-    (gpu * 7).div_ceil(11)
-}
-
 /// A 16x16 sprite reading from an empty cache misses once per entry its rows reach: a row of
 /// 16 texels is one entry at 4-bit, two at 8-bit, four at 15-bit; drawn again, nothing. Each
-/// miss adds 4 draw units (docs/emulator.md, "Drawing time"): a raw 15-bit 16x16 sprite costs
-/// 16 + 256 units, plus 4 x 64 from an empty cache: drawn twice on a fresh GPU, the drawing
-/// time is both sprites' (each command's units converted on its own). With the cache off
-/// nothing is counted.
+/// miss adds 2 CPU cycles of drawing time (docs/emulator.md, "Drawing time"): a raw 15-bit
+/// 16x16 sprite from an empty cache (64 misses) takes 128 CPU cycles longer than with the
+/// cache off, and drawn a second time (no miss) as long as with the cache off. With the cache
+/// off nothing is counted.
 #[test]
 fn misses_and_their_time() {
     for (e1, per_row) in [(E1_PAGE4, 1), (E1_PAGE8, 2), (E1_PAGE15, 4)] {
@@ -299,24 +288,21 @@ fn misses_and_their_time() {
         }
     }
     let sprite = [0x7D00_0000, xy(100, 450), 0];
-    let mut g = gpu(false);
-    g.gp0_words(&sprite);
-    assert_eq!(
-        g.cycles_until_next_event(),
-        cpu_cycles(gpu_cycles(16 + 256 + 4 * 64))
-    );
-    g.gp0_words(&sprite);
-    let both = gpu_cycles(16 + 256 + 4 * 64) + gpu_cycles(16 + 256);
-    assert_eq!(g.cycles_until_next_event(), cpu_cycles(both));
-    let mut g = gpu(false);
-    g.set_texture_cache(false);
-    g.gp0_words(&sprite);
-    g.gp0_words(&sprite);
-    assert_eq!(
-        g.cycles_until_next_event(),
-        cpu_cycles(2 * gpu_cycles(16 + 256))
-    );
-    assert_eq!(g.texture_cache_misses(), 0);
+    let time = |cache: bool, times: usize| {
+        let mut g = gpu(false);
+        g.set_texture_cache(cache);
+        for _ in 0..times {
+            g.gp0_words(&sprite);
+        }
+        (g.cycles_until_next_event(), g.texture_cache_misses())
+    };
+    let (off, off_misses) = time(false, 1);
+    let (cold, misses) = time(true, 1);
+    assert_eq!((off_misses, misses), (0, 64));
+    assert_eq!(cold - off, 64 * 2);
+    let (off_twice, _) = time(false, 2);
+    let (on_twice, _) = time(true, 2);
+    assert_eq!(on_twice - off_twice, 64 * 2);
 }
 
 /// Pixels the mask check keeps from being written still read their texels: a 4x1 sprite over
