@@ -166,11 +166,11 @@ impl Cost {
         entries.saturating_mul(Self::CLUT_ENTRY)
     }
 
-    /// Per texture cache miss (docs/hardware/gpu.md §10): Mednafen's figure, 4 of its half
-    /// cycles, so 2 CPU cycles (its GetTexel charges 4 per miss, its comment giving the
-    /// console as 12 + 4 cycles for sprites on the SCPH-5501's GPU), provisional until fitted
-    /// to the console's textured rows.
-    pub const TEXTURE_MISS: u32 = cycles(2);
+    /// Per texture cache miss (docs/hardware/gpu.md §10), 8.81 CPU cycles (calibrated:
+    /// Polygon quad textured, whose 15-bit page stretched across 320x240 misses on about one
+    /// texel in five). Mednafen charges 2 CPU cycles and its comment gives the console as
+    /// 12 + 4 GPU cycles for sprites; this figure is 13.8 GPU cycles.
+    pub const TEXTURE_MISS: u32 = 2255;
 
     /// `misses` texture cache misses.
     pub fn texture_misses(misses: u32) -> u32 {

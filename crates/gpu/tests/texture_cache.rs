@@ -270,10 +270,11 @@ fn blocks_at_8_bit() {
 
 /// A 16x16 sprite reading from an empty cache misses once per entry its rows reach: a row of
 /// 16 texels is one entry at 4-bit, two at 8-bit, four at 15-bit; drawn again, nothing. Each
-/// miss adds 2 CPU cycles of drawing time (docs/emulator.md, "Drawing time"): a raw 15-bit
-/// 16x16 sprite from an empty cache (64 misses) takes 128 CPU cycles longer than with the
-/// cache off, and drawn a second time (no miss) as long as with the cache off. With the cache
-/// off nothing is counted.
+/// miss adds 2255/256 (8.81) CPU cycles of drawing time, the figure calibrated on the
+/// console's textured quads (docs/emulator.md, "Drawing time"): a raw 15-bit 16x16 sprite from
+/// an empty cache (64 misses) takes 64 x 2255 / 256 = 563.75 CPU cycles longer than with the
+/// cache off (563 or 564 whole cycles, as the carried fraction falls), and drawn a second time
+/// (no miss) no longer again. With the cache off nothing is counted.
 #[test]
 fn misses_and_their_time() {
     for (e1, per_row) in [(E1_PAGE4, 1), (E1_PAGE8, 2), (E1_PAGE15, 4)] {
@@ -294,15 +295,16 @@ fn misses_and_their_time() {
         for _ in 0..times {
             g.gp0_words(&sprite);
         }
-        (g.cycles_until_next_event(), g.texture_cache_misses())
+        (g.cycles_until(gpu::EventKind::DrawingDone), g.texture_cache_misses())
     };
     let (off, off_misses) = time(false, 1);
     let (cold, misses) = time(true, 1);
     assert_eq!((off_misses, misses), (0, 64));
-    assert_eq!(cold - off, 64 * 2);
+    let within_a_cycle = |extra: u32| (extra * 256).abs_diff(64 * 2255) < 256;
+    assert!(within_a_cycle(cold - off), "{cold} - {off}");
     let (off_twice, _) = time(false, 2);
     let (on_twice, _) = time(true, 2);
-    assert_eq!(on_twice - off_twice, 64 * 2);
+    assert!(within_a_cycle(on_twice - off_twice), "{on_twice} - {off_twice}");
 }
 
 /// Pixels the mask check keeps from being written still read their texels: a 4x1 sprite over
