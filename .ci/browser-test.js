@@ -80,6 +80,7 @@ function check(cond, what) {
   const summary = await page.textContent("#summary");
   check(/\d+ commands, \d+ draws/.test(summary), "summary shows command and draw counts: " + summary);
   check(/GPU time \d+ CPU cycles/.test(summary), "summary shows the GPU time: " + summary);
+  check(/\d+ texture cache misses/.test(summary), "summary shows the texture cache misses: " + summary);
 
   // The page starts on the first draw; step forward and back.
   const first = await page.textContent("#detail h2");

@@ -10,7 +10,7 @@ use gpu::encode::{self, Polygon, Rectangle, SpriteSize, Vertex};
 use gpu::{Gpu, VRAM_LEN};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use wobble::inspect::{InspectOptions, InspectSummary, write_report};
+use wobble::inspect::{InspectOptions, InspectSummary, summary_line, write_report};
 
 fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -421,6 +421,32 @@ fn each_command_has_its_gpu_time() {
     assert_eq!(s.cpu_cycles, total);
     let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
     assert!(index.contains(&format!("\"cpuCycles\":{total}")), "{index}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Each command's texture cache misses are listed (docs/hardware/gpu.md §10: an entry holds
+/// four 15-bit texels, and a 32-texel row lies in one 32x32 block): a raw 32x1 sprite from a
+/// 15-bit page misses on its 8 entries from an empty cache, on none when drawn again, and on
+/// all 8 after GP0(01h) empties the cache. Untextured commands take none.
+#[test]
+fn each_command_has_its_texture_cache_misses() {
+    let text = "gp0 e3000000\ngp0 e407ffff\ngp0 e5000000\ngp0 e1000108\n\
+                gp0 65000000 00000000 00000000 00010020\n\
+                gp0 65000000 00010000 00000000 00010020\n\
+                gp0 01000000\n\
+                gp0 65000000 00020000 00000000 00010020\n";
+    let (s, rows, dir) = report(text, "misses");
+    assert_eq!(s.texture_misses, [0, 0, 0, 0, 8, 0, 0, 8]);
+    assert_eq!(rows[4]["miss"].as_u64(), Some(8));
+    assert!(rows[5].get("miss").is_none() && rows[6].get("miss").is_none());
+    assert_eq!(rows[7]["miss"].as_u64(), Some(8));
+    let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
+    assert!(index.contains("\"missesTotal\":16"), "{index}");
+    assert!(
+        summary_line(&s, &dir).contains("16 texture cache misses"),
+        "{}",
+        summary_line(&s, &dir)
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -98,6 +98,9 @@ pub struct InspectSummary {
     pub gpu_cycles: Vec<u64>,
     /// All commands' time in CPU cycles: the sum of `gpu_cycles` at the console's clock ratio.
     pub cpu_cycles: u64,
+    /// Per command: the texture cache misses it took ([`gpu::Gpu::texture_cache_misses`]
+    /// across the command), each part of its time.
+    pub texture_misses: Vec<u64>,
 }
 
 fn io_err(path: &Path, e: std::io::Error) -> String {
@@ -427,6 +430,7 @@ pub fn write_report_with_progress(
     summary.commands = index;
     summary.draws = draw_indices;
     let gpu_total: u64 = summary.gpu_cycles.iter().sum();
+    let misses_total: u64 = summary.texture_misses.iter().sum();
     let cpu_total = (gpu_total * den).div_ceil(num);
     summary.cpu_cycles = cpu_total;
     let hist_tiles = history.finish()?;
@@ -468,6 +472,7 @@ pub fn write_report_with_progress(
         "hasFaces": faces.is_some(),
         "gpuCycles": gpu_total,
         "cpuCycles": cpu_total,
+        "missesTotal": misses_total,
         "cpuHz": gpu::CPU_CLOCK_HZ,
         "lineCycles": line_cycles,
         "times": times,
@@ -576,9 +581,12 @@ fn run_one(
         _ => None,
     };
     let work = gpu.work_cycles();
+    let misses_before = gpu.texture_cache_misses();
     Tracer::execute(gpu, cmd);
     let gpu_cycles = gpu.work_cycles().saturating_sub(work);
     summary.gpu_cycles.push(gpu_cycles);
+    let misses = gpu.texture_cache_misses().saturating_sub(misses_before);
+    summary.texture_misses.push(misses);
     let (num, den) = gpu.video_standard().clock_ratio();
     let cpu_cycles = (gpu_cycles * den).div_ceil(num);
     let mut changed = 0u64;
@@ -689,6 +697,7 @@ fn run_one(
         "origin": origin,
         "gpu": (gpu_cycles > 0).then_some(gpu_cycles),
         "cyc": (cpu_cycles > 0).then_some(cpu_cycles),
+        "miss": (misses > 0).then_some(misses),
     });
     // Empty entries are left out: the page treats a missing key as null or empty.
     if let Value::Object(m) = &mut row {
@@ -719,7 +728,7 @@ pub fn inspect_stream(
 pub fn summary_line(s: &InspectSummary, out: &Path) -> String {
     let count = |n: u64, one: &str, many: &str| format!("{n} {}", if n == 1 { one } else { many });
     format!(
-        "{} ({}, {} dropped, {}; GPU time {} CPU cycles = {:.3} ms) -> {}",
+        "{} ({}, {} dropped, {}; GPU time {} CPU cycles = {:.3} ms, {}) -> {}",
         count(s.commands as u64, "command", "commands"),
         count(s.draws as u64, "draw", "draws"),
         count(s.dropped as u64, "primitive", "primitives"),
@@ -730,6 +739,11 @@ pub fn summary_line(s: &InspectSummary, out: &Path) -> String {
         ),
         s.cpu_cycles,
         s.cpu_cycles as f64 * 1000.0 / gpu::CPU_CLOCK_HZ as f64,
+        count(
+            s.texture_misses.iter().sum::<u64>(),
+            "texture cache miss",
+            "texture cache misses"
+        ),
         out.join("index.html").display()
     )
 }

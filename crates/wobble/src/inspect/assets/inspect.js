@@ -90,7 +90,7 @@ var INSPECT = (function () {
         var r = row(i); if (!r) return;
         html.push('<tr data-i="' + i + '" class="k-' + idx.classes.charAt(i).toLowerCase() + (i === current ? " sel" : "") + '"><td>' + i +
           "</td><td>" + r.line + "</td><td>" + r.port + "</td><td>" + esc(r.name) + "</td><td>" + result(r) +
-          "</td><td>" + (r.changed || "") + '</td><td class="num">' + (r.cyc || "") + "</td></tr>");
+          "</td><td>" + (r.changed || "") + '</td><td class="num">' + (r.cyc || "") + '</td><td class="miss">' + (r.miss || "") + "</td></tr>");
       });
       $("rows").tBodies[0].innerHTML = html.join("");
       scrollToSelected();
@@ -146,6 +146,7 @@ var INSPECT = (function () {
       h.push('<div>GPU time: <b id="time">' + cycles(r.cyc) + "</b>, " + r.gpu + " GPU cycles, " + share +
         "% of the whole</div>");
     }
+    if (r.miss) h.push('<div>texture cache misses: <b id="misses">' + r.miss + "</b></div>");
     h.push('<div class="pics">');
     if (r.img) {
       // The image holds three panels (before, after, changed), each w x hh, 4 pixels apart.
@@ -564,7 +565,8 @@ var INSPECT = (function () {
       document.title = "wobble inspect: " + idx.title;
       $("summary").textContent = idx.commands + " commands, " + idx.draws + " draws, " + idx.dropped +
         " primitives dropped, " + idx.changedTotal + " pixel changes; GPU time " + cycles(idx.cpuCycles) +
-        ", " + (idx.cpuCycles / idx.lineCycles).toFixed(1) + " scanlines";
+        ", " + (idx.cpuCycles / idx.lineCycles).toFixed(1) + " scanlines, " + (idx.missesTotal || 0) +
+        " texture cache misses";
       $("filter").onchange = applyFilter;
       $("next-draw").onclick = function () { step(1); };
       $("prev-draw").onclick = function () { step(-1); };
