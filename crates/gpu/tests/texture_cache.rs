@@ -295,7 +295,10 @@ fn misses_and_their_time() {
         for _ in 0..times {
             g.gp0_words(&sprite);
         }
-        (g.cycles_until(gpu::EventKind::DrawingDone), g.texture_cache_misses())
+        (
+            g.cycles_until(gpu::EventKind::DrawingDone),
+            g.texture_cache_misses(),
+        )
     };
     let (off, off_misses) = time(false, 1);
     let (cold, misses) = time(true, 1);
@@ -304,7 +307,10 @@ fn misses_and_their_time() {
     assert!(within_a_cycle(cold - off), "{cold} - {off}");
     let (off_twice, _) = time(false, 2);
     let (on_twice, _) = time(true, 2);
-    assert!(within_a_cycle(on_twice - off_twice), "{on_twice} - {off_twice}");
+    assert!(
+        within_a_cycle(on_twice - off_twice),
+        "{on_twice} - {off_twice}"
+    );
 }
 
 /// Pixels the mask check keeps from being written still read their texels: a 4x1 sprite over
