@@ -289,13 +289,25 @@ impl<'de> Deserialize<'de> for VramV1 {
 }
 
 /// A version-1 body: the fields of [`GpuFields`] with VRAM as a sequence of halfwords, the
-/// VRAM-to-CPU transfer without its fetch timing and the drawing time without its carried
-/// fraction and work counter (both added in version 2, loaded as 0).
+/// VRAM-to-CPU transfer without its fetch timing, the drawing time without its carried
+/// fraction and work counter (both added in version 2, loaded as 0) and no texture cache
+/// (added in version 2: loaded on and empty, as after GP0(01h)).
 struct GpuV1(Gpu);
+
+/// The texture cache of a version-1 state, which had none: nothing in binary formats, an
+/// absent field in self-describing ones.
+#[derive(Default, Deserialize)]
+struct NoTextureCache;
+
+impl From<NoTextureCache> for TextureCache {
+    fn from(_: NoTextureCache) -> Self {
+        TextureCache::default()
+    }
+}
 
 impl<'de> Deserialize<'de> for GpuV1 {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let f = GpuFields::<VramV1, transfer::ReadTransferV1, drawing::DrawingV1>::deserialize(
+        let f = GpuFields::<VramV1, transfer::ReadTransferV1, drawing::DrawingV1, NoTextureCache>::deserialize(
             deserializer,
         )?;
         Ok(GpuV1(f.into_gpu(|v| v.0)?))
@@ -380,10 +392,17 @@ impl<'de> Deserialize<'de> for GpuAnyLayout {
 /// checked; `V` is VRAM, `R` the VRAM-to-CPU transfer and `D` the drawing time in the layout
 /// of the version read.
 #[derive(Deserialize)]
-pub(crate) struct GpuFields<V = Vram, R = transfer::ReadTransfer, D = drawing::Drawing> {
+pub(crate) struct GpuFields<
+    V = Vram,
+    R = transfer::ReadTransfer,
+    D = drawing::Drawing,
+    C = TextureCache,
+> {
     draw: DrawState,
     clut: ClutCache,
-    texture_cache: TextureCache,
+    /// Absent from version-1 states in self-describing formats (see [`NoTextureCache`]).
+    #[serde(default)]
+    texture_cache: C,
     gp0: gp0::Gp0State,
     read: R,
     display: DisplayState,
@@ -396,13 +415,16 @@ pub(crate) struct GpuFields<V = Vram, R = transfer::ReadTransfer, D = drawing::D
     vram: V,
 }
 
-impl<V, R: Into<transfer::ReadTransfer>, D: Into<drawing::Drawing>> GpuFields<V, R, D> {
+impl<V, R: Into<transfer::ReadTransfer>, D: Into<drawing::Drawing>, C: Into<TextureCache>>
+    GpuFields<V, R, D, C>
+{
     /// The checked GPU of these fields, their VRAM converted by `vram`, the transfer and
     /// drawing time by their version's conversion.
     fn into_gpu<E: de::Error>(self, vram: impl FnOnce(V) -> Vram) -> Result<Gpu, E> {
         Gpu::try_from(GpuFields {
             draw: self.draw,
             clut: self.clut,
+            texture_cache: self.texture_cache.into(),
             gp0: self.gp0,
             read: self.read.into(),
             display: self.display,

@@ -166,7 +166,7 @@ impl Resident {
 }
 
 /// The texture cache: tags and copies of 256 entries, and the misses counted.
-#[derive(Clone, PartialEq, Eq)]
+#[derive(Clone)]
 pub struct TextureCache {
     /// Texel reads go through the cache; when false they read VRAM and every tag is
     /// [`INVALID`].
@@ -190,6 +190,23 @@ pub struct TextureCache {
     /// Misses since power-on.
     total: u64,
 }
+
+/// Caches are equal when the chip's state is: the switch, the tags, the copies while they are
+/// kept, where resident entries may lie and the misses since power-on (what a save state
+/// holds); the region last found clear, the last tag read and the misses not yet taken are
+/// bookkeeping the next command recomputes.
+impl PartialEq for TextureCache {
+    fn eq(&self, other: &Self) -> bool {
+        self.enabled == other.enabled
+            && self.tags == other.tags
+            && self.copies == other.copies
+            && (!self.copies || self.data == other.data)
+            && self.resident == other.resident
+            && self.total == other.total
+    }
+}
+
+impl Eq for TextureCache {}
 
 impl Default for TextureCache {
     /// On, every entry invalid (power-on).
