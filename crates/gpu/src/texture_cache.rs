@@ -191,8 +191,8 @@ pub struct TextureCache {
     total: u64,
 }
 
-/// Caches are equal when the chip's state is: the switch, the tags, the copies while they are
-/// kept, where resident entries may lie and the misses since power-on (what a save state
+/// Caches are equal when the chip's state is: the switch, the tags, the copies of resident
+/// entries while they are kept, where resident entries may lie and the misses since power-on (what a save state
 /// holds); the region last found clear, the last tag read and the misses not yet taken are
 /// bookkeeping the next command recomputes.
 impl PartialEq for TextureCache {
@@ -200,7 +200,12 @@ impl PartialEq for TextureCache {
         self.enabled == other.enabled
             && self.tags == other.tags
             && self.copies == other.copies
-            && (!self.copies || self.data == other.data)
+            && (!self.copies
+                || self
+                    .tags
+                    .iter()
+                    .zip(self.data.iter().zip(&other.data))
+                    .all(|(&tag, (a, b))| tag == INVALID || a == b))
             && self.resident == other.resident
             && self.total == other.total
     }
@@ -457,8 +462,20 @@ struct Fields {
 #[cfg(feature = "serde")]
 impl serde::Serialize for TextureCache {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        // The copies of resident entries only: an invalid entry's halfwords are left over
+        // from before and never read.
         let data = if self.copies {
-            self.data.as_flattened().to_vec()
+            self.tags
+                .iter()
+                .zip(&self.data)
+                .flat_map(|(&tag, d)| {
+                    if tag == INVALID {
+                        [0; ENTRY_HALFWORDS]
+                    } else {
+                        *d
+                    }
+                })
+                .collect()
         } else {
             alloc::vec![0; ENTRIES * ENTRY_HALFWORDS]
         };
