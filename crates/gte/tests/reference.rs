@@ -6,19 +6,8 @@
 use gte::{REGISTER_NAMES, Registers, reference};
 use serde_json::Value;
 
-const FIXTURE: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../fixtures/gte/ps1-tests-hw.jsonl"
-);
-
-fn words(v: &Value, field: &str) -> Vec<u32> {
-    v[field]
-        .as_array()
-        .unwrap_or_else(|| panic!("field {field} missing"))
-        .iter()
-        .map(|w| u32::try_from(w.as_u64().expect("register value")).expect("32-bit value"))
-        .collect()
-}
+mod support;
+use support::vectors::{FIXTURE, words};
 
 #[test]
 fn reference_matches_every_hardware_vector() {
