@@ -68,7 +68,7 @@ impl Cost {
     /// Each even-aligned pixel pair a blending or mask-checking span reads back
     /// (calibrated: Rectangle (semitransparent)).
     pub const PAIR: u32 = 140;
-    /// Extra per pixel of a Gouraud-shaded or textured primitive (Mednafen: half a cycle).
+    /// Extra per pixel of a Gouraud-shaded or textured triangle (Mednafen: half a cycle).
     pub const SHADED_PIXEL: u32 = UNITS_PER_CYCLE / 2;
     /// Rectangle set-up (Mednafen).
     pub const RECTANGLE_SETUP: u32 = cycles(8);
@@ -132,15 +132,14 @@ impl Cost {
             .wrapping_add(pairs.wrapping_mul(Self::PAIR))
     }
 
-    /// One rectangle: set-up, per row walked, per pixel drawn, per textured pixel, and per
-    /// pixel pair read back when blending or mask-checking (bounded as for
-    /// [`Cost::triangle`]).
+    /// One rectangle: set-up, per row walked, per pixel drawn, and per pixel pair read back
+    /// when blending or mask-checking (bounded as for [`Cost::triangle`]). A textured
+    /// rectangle pays nothing per texel beyond its texture cache misses: Mednafen's sprite
+    /// path charges a sprite's row its width alone (plus the read-back), where its polygon
+    /// path charges a textured or shaded triangle's row twice its width.
     #[inline(always)]
-    pub fn rectangle(textured: bool, read_back: bool, drawn: DrawCount) -> u32 {
-        let shaded = if textured { drawn.pixels } else { 0 };
-        Self::RECTANGLE_SETUP
-            .wrapping_add(Self::span_work(read_back, drawn))
-            .wrapping_add(shaded.wrapping_mul(Self::SHADED_PIXEL))
+    pub fn rectangle(read_back: bool, drawn: DrawCount) -> u32 {
+        Self::RECTANGLE_SETUP.wrapping_add(Self::span_work(read_back, drawn))
     }
 
     /// One line segment: set-up and each step along the major axis (the points stepped

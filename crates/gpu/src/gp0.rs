@@ -804,7 +804,6 @@ impl Gpu {
             .texture
             .map_or(0, |t| Cost::clut_load(self.clut.load_size(&t)));
         let rows = self.draw_rows();
-        let textured = rect.texture.is_some();
         let cache = &mut self.texture_cache;
         let drawn = draw_rectangle_rows(
             &mut self.vram,
@@ -816,7 +815,6 @@ impl Gpu {
         );
         clut_units
             .saturating_add(Cost::rectangle(
-                textured,
                 op.semi_transparent || self.draw.mask.check,
                 drawn,
             ))

@@ -219,6 +219,29 @@ fn drawing_done_arrives_at_the_predicted_cycle() {
     assert_eq!(g.cycles_until(EventKind::DrawingDone), u32::MAX);
 }
 
+/// A textured rectangle costs what a flat one of the same pixels costs plus its texture
+/// cache misses, and nothing per texel (docs/emulator.md, "Drawing time": Mednafen's sprite
+/// path). A 64x64 raw 15-bit sprite from the page at x = 512: 15-bit cache blocks are 32x32
+/// texels with an entry of 4 texels (docs/hardware/gpu.md §10), so a 64-texel row reads
+/// 8 entries of one block and then the same 8 entry numbers of the next block, and every
+/// one of its 16 reads of a new entry misses: 64 x 16 = 1,024 misses.
+#[test]
+fn textured_rectangle_time_is_the_flat_time_plus_misses() {
+    let mut g = quiet();
+    g.gp0_words(&[0xE300_0000, 0xE400_0000 | 511 << 10 | 1023]);
+    // GP0(E1h): page x = 8 * 64 = 512, 15-bit texels.
+    g.gp0_words(&[0xE100_0000 | 2 << 7 | 8]);
+    g.gp0_words(&[0x6500_0000, 0, 0, 0x0040_0040]);
+    let n = g.cycles_until(EventKind::DrawingDone);
+    let misses = 64.0 * 16.0;
+    let time = cost::RECTANGLE_SETUP
+        + 64.0 * cost::ROW
+        + 4096.0 * cost::PIXEL
+        + misses * cost::TEXTURE_MISS;
+    assert_eq!(n, cost::cycles_to_idle(time));
+    assert_eq!(g.texture_cache_misses(), 1024);
+}
+
 /// A PAL console converts the same costs at its own clock ratio (53,203,425 / 33,868,800,
 /// docs/hardware/timing.md §1): a draw takes the same CPU time on both consoles, in fewer
 /// GPU cycles on the slower PAL clock.

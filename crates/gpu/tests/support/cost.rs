@@ -21,6 +21,8 @@ pub const PAIR: f64 = 140.0 / 256.0;
 pub const SHADED_PIXEL: f64 = 0.5;
 /// Rectangle set-up.
 pub const RECTANGLE_SETUP: f64 = 8.0;
+/// Each texture cache miss (textured triangles and rectangles).
+pub const TEXTURE_MISS: f64 = 2255.0 / 256.0;
 /// Line set-up and cost per major-axis step.
 pub const LINE_SETUP: f64 = 8.0;
 pub const LINE_STEP: f64 = 1.0;
