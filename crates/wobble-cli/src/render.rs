@@ -74,6 +74,10 @@ pub struct RenderArgs {
     /// Turn dithering off.
     #[arg(long)]
     pub no_dither: bool,
+    /// Turn the GPU's texture cache off: texels are read straight from VRAM, so no stale
+    /// texels and no miss time (docs/gpu.md, "Texture cache").
+    #[arg(long)]
+    pub no_texture_cache: bool,
     /// GTE divide (non-hardware: exact, f32); overrides the scene's `[accuracy] divide`.
     #[arg(long, value_enum)]
     pub divide: Option<DivideArg>,
@@ -239,7 +243,7 @@ pub fn run(args: &RenderArgs) -> Result<String, String> {
         divide_mode: args.divide.map_or(accuracy.divide, DivideMode::from),
         subpixel: args.subpixel || accuracy.subpixel,
         perspective_uv: args.perspective_uv || accuracy.perspective_uv,
-        texture_cache: true,
+        texture_cache: !args.no_texture_cache,
     };
     // The last frame's image: -o, else wobble.png unless --inspect writes a report instead.
     let output = match (&args.output, &args.inspect) {

@@ -60,6 +60,10 @@ pub struct ReplayArgs {
     /// timed streams (docs/formats.md, "Timed streams"); not GPU dumps.
     #[arg(long, conflicts_with_all = ["frame", "frames", "png_dir", "list"])]
     pub timing: bool,
+    /// Turn the GPU's texture cache off: texels are read straight from VRAM, so no stale
+    /// texels and no miss time (docs/gpu.md, "Texture cache").
+    #[arg(long)]
+    pub no_texture_cache: bool,
     /// The console whose clocks time the stream.
     #[arg(long, value_enum, default_value_t = ConsoleArg::Ntsc, requires = "timing")]
     pub console: ConsoleArg,
@@ -137,6 +141,7 @@ fn run_timed(args: &ReplayArgs) -> Result<String, String> {
     let image_out = output::open(&path)?;
     let raw_out = args.raw.as_deref().map(output::open).transpose()?;
     let mut gpu = gpu::Gpu::with_standard(args.console.into());
+    gpu.set_texture_cache(!args.no_texture_cache);
     let text = input::read_text(
         &args.stream,
         "a timed command stream (.gpu text; docs/formats.md)",
@@ -444,6 +449,7 @@ pub fn run(args: &ReplayArgs) -> Result<String, String> {
     };
 
     let mut player = Player::new(dump, standard);
+    player.set_texture_cache(!args.no_texture_cache);
     let mut progress = FrameProgress::new(run_to as u64, "replayed");
     let mut selected = 0usize;
     for i in 0..run_to {

@@ -491,3 +491,48 @@ fn replay_timing_reports_a_timed_stream() {
     let o = wobble(&["replay", "--console", "pal", stream.to_str().unwrap()]);
     assert!(!o.status.success());
 }
+
+/// `replay --no-texture-cache` reads texels straight from VRAM. Four 15-bit texels (7C1Fh)
+/// are uploaded at x = 512 and drawn by a 4x1 sprite, which loads them into the texture
+/// cache; a fill then paints them green (03E0h: 24-bit 00FF00h as 5:5:5) and a second
+/// sprite draws them on line 1. With the cache, the fill under a resident entry is not seen
+/// and line 1 gets the stale 7C1Fh; without it, the fill's 03E0h (docs/hardware/gpu.md §10).
+#[test]
+fn replay_without_the_texture_cache_shows_no_stale_texels() {
+    let stream = tmp("stale.gpu");
+    std::fs::write(
+        &stream,
+        "gp1 00000000\ngp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
+         # 15-bit texture page at x = 512\ngp0 e1000108\n\
+         gp0 a0000000\ngp0 00000200\ngp0 00010004\ngp0 7c1f7c1f\ngp0 7c1f7c1f\n\
+         gp0 65000000\ngp0 00000000\ngp0 00000000\ngp0 00010004\n\
+         gp0 0200ff00\ngp0 00000200\ngp0 00010010\n\
+         gp0 65000000\ngp0 00010000\ngp0 00000000\ngp0 00010004\n",
+    )
+    .unwrap();
+    let line1 = |extra: &[&str]| {
+        let raw = tmp(&format!("stale{}.bin", extra.len()));
+        let mut args = vec![
+            "replay",
+            stream.to_str().unwrap(),
+            "-o",
+            "/dev/null",
+            "--format",
+            "png",
+            "--raw",
+            raw.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = wobble(&args);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let vram = std::fs::read(&raw).unwrap();
+        (0..4)
+            .map(|x| {
+                let at = (1024 + x) * 2;
+                u16::from_le_bytes([vram[at], vram[at + 1]])
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(line1(&[]), [0x7C1F; 4]);
+    assert_eq!(line1(&["--no-texture-cache"]), [0x03E0; 4]);
+}

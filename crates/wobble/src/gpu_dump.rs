@@ -364,6 +364,12 @@ impl<'a> Player<'a> {
         }
     }
 
+    /// Switch the GPU's texture cache on (as on the console, the default) or off
+    /// ([`Gpu::set_texture_cache`]); either way it starts empty.
+    pub fn set_texture_cache(&mut self, on: bool) {
+        self.gpu.set_texture_cache(on);
+    }
+
     /// The GPU as the packets so far left it.
     pub fn gpu(&self) -> &Gpu {
         &self.gpu
