@@ -390,14 +390,32 @@ impl TextureCache {
     }
 
     /// A read, with the copies not kept ([`mode::TAGS`]), of a halfword whose entry is `i`
-    /// and tag `tag` (from [`entry_index`] and [`tag_of`]).
+    /// and tag `tag` (from [`entry_index`] and [`tag_of`]): the tag is stored and a miss
+    /// counted without a branch, since texels that jump from entry to entry make a miss as
+    /// likely as a hit.
     #[inline(always)]
     pub(crate) fn track_entry(&mut self, i: usize, tag: u32) {
         let t = &mut self.tags[i & (ENTRIES - 1)];
-        if *t != tag {
+        self.misses = self.misses.wrapping_add(u32::from(*t != tag));
+        *t = tag;
+    }
+
+    /// Reads, with the copies not kept ([`mode::TAGS`]), of the halfwords at the first `n`
+    /// (at most 8) of the eight `address`es (below `VRAM_LEN`), in lane order: the misses
+    /// and the tags left are those of reading the `n` halfwords one by one
+    /// (docs/hardware/gpu.md §10). Each read stores its tag and counts a miss without a
+    /// branch: texels that jump from entry to entry make a miss as likely as a hit.
+    #[inline(always)]
+    pub(crate) fn track_lanes<const TEX: u8>(&mut self, address: wide::u32x8, n: usize) {
+        let tag = (address >> 2u32).to_array();
+        let entry = entry_index_lanes::<TEX>(address).to_array();
+        let mut misses = 0;
+        for (&i, &tag) in entry.iter().zip(&tag).take(n) {
+            let t = &mut self.tags[i as usize & (ENTRIES - 1)];
+            misses += u32::from(*t != tag);
             *t = tag;
-            self.misses = self.misses.wrapping_add(1);
         }
+        self.misses = self.misses.wrapping_add(misses);
     }
 
     /// Entry `index`: where its halfwords came from and their values (from `vram` while the
@@ -593,6 +611,49 @@ mod tests {
         for (k, &address) in addresses.iter().enumerate() {
             assert_eq!(four[k] as usize, entry_index::<1>(address as usize));
             assert_eq!(other[k] as usize, entry_index::<3>(address as usize));
+        }
+    }
+
+    /// Eight reads at a time leave the misses and tags of the same reads made one by one:
+    /// runs of reads in one entry, jumps between entries, the same entry number in another
+    /// block, and partial groups.
+    #[test]
+    fn lanes_track_as_reads_one_by_one() {
+        fn check<const TEX: u8>(reads: &[u32]) {
+            let (mut lanes, mut one) = (TextureCache::default(), TextureCache::default());
+            for group in reads.chunks(8) {
+                let mut a = [0u32; 8];
+                a[..group.len()].copy_from_slice(group);
+                lanes.track_lanes::<TEX>(wide::u32x8::new(a), group.len());
+                for &address in group {
+                    one.track::<TEX>(address as usize);
+                }
+            }
+            assert_eq!(lanes.tags, one.tags);
+            assert_eq!(lanes.take_misses(), one.take_misses());
+        }
+        // A 15-bit row stepping one halfword a pixel, then back over the same entries.
+        let row: alloc::vec::Vec<u32> =
+            (0..21).chain((0..21).rev()).map(|x| 5 * 1024 + x).collect();
+        // A 4-bit column: each read a line down, and the same entry numbers 64 lines below.
+        let column: alloc::vec::Vec<u32> = (0..140).map(|y| y * 1024 + 70).collect();
+        // Scattered reads, entries shared by reads far apart.
+        let mut x = 12345u32;
+        let scattered: alloc::vec::Vec<u32> = (0..203)
+            .map(|_| {
+                x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                (x >> 8) & if x & 1 == 0 { 0x7_C0FF } else { 0x7_FFFF }
+            })
+            .collect();
+        for reads in [&row, &column, &scattered] {
+            check::<1>(reads);
+            check::<2>(reads);
+            check::<3>(reads);
+            // Partial groups: every length from 1 to 8.
+            for n in 1..=8 {
+                check::<1>(&reads[..n]);
+                check::<3>(&reads[..n]);
+            }
         }
     }
 

@@ -14,7 +14,7 @@ use super::PixelEnv;
 use crate::VRAM_LEN;
 use crate::color::DITHER_MATRIX;
 use crate::texture::texture_halfword;
-use crate::texture_cache::{TextureCache, entry_index_lanes, mode};
+use crate::texture_cache::{TextureCache, mode};
 use wide::bytemuck::cast;
 use wide::{i16x8, i32x8, u16x8, u32x8};
 
@@ -190,21 +190,15 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>
                 2 => (base + (u >> 1), (u & u32x8::splat(1)) << 3),
                 _ => (base + u, u32x8::ZERO),
             };
-            // With the tags tracked, each texel's entry and tag are worked out in the lanes
+            // With the tags tracked, the reads' entries and tags are worked out in the lanes
             // too (docs/hardware/gpu.md §10).
             let tags = CACHE == mode::TAGS;
-            let (entry, tag) = if tags {
-                (
-                    entry_index_lanes::<TEX>(address).to_array(),
-                    (address >> 2u32).to_array(),
-                )
-            } else {
-                ([0; LANES], [0; LANES])
-            };
+            if tags {
+                cache.track_lanes::<TEX>(address, n);
+            }
             let (address, shift) = (address.to_array(), shift.to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
                 let word = if tags {
-                    cache.track_entry(entry[k] as usize, tag[k]);
                     vram[address[k] as usize & (VRAM_LEN - 1)]
                 } else {
                     texture_halfword::<TEX, CACHE>(vram, cache, address[k] as usize)
@@ -247,13 +241,12 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>
 /// The texel reads of up to eight consecutive pixels of a span over a page of kind `TEX` (1 =
 /// 4-bit, 3 = 15-bit) that lies inside VRAM under the identity window ([`plain_page`], its
 /// index `page`): the halfwords' addresses `page + v * 1024 + u / 4` (4-bit) or `+ u`
-/// (15-bit), the texel's bit position in it, and the texture cache entry and tag of each
-/// (docs/hardware/gpu.md §7, §10). U and V start at `uv` and step by `duv` (8.24).
+/// (15-bit) in lanes and as an array, and the texel's bit position in it (docs/hardware/gpu.md
+/// §7). U and V start at `uv` and step by `duv` (8.24).
 pub(super) struct PlainReads {
+    pub(super) lanes: u32x8,
     pub(super) address: [u32; LANES],
     pub(super) shift: [u32; LANES],
-    pub(super) entry: [u32; LANES],
-    pub(super) tag: [u32; LANES],
 }
 
 impl PlainReads {
@@ -276,10 +269,9 @@ impl PlainReads {
             (base + u, u32x8::ZERO)
         };
         Self {
+            lanes: address,
             address: address.to_array(),
             shift: shift.to_array(),
-            entry: entry_index_lanes::<TEX>(address).to_array(),
-            tag: (address >> 2u32).to_array(),
         }
     }
 

@@ -873,8 +873,9 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
         let mut x = x_start;
         while x < x_end {
             let r = span::PlainReads::new::<1>(page, (u, v), &steps);
-            for k in 0..((x_end - x) as usize).min(8) {
-                cache.track_entry(r.entry[k] as usize, r.tag[k]);
+            let n = ((x_end - x) as usize).min(8);
+            cache.track_lanes::<1>(r.lanes, n);
+            for k in 0..n {
                 let word = vram[r.address[k] as usize & (VRAM_LEN - 1)];
                 let texel = usize::from((word >> r.shift[k]) & 0xF);
                 let e = if CELLS {
@@ -943,8 +944,9 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
         let mut x = x_start;
         while x < x_end {
             let r = span::PlainReads::new::<3>(page, (u, v), &steps);
-            for k in 0..((x_end - x) as usize).min(8) {
-                cache.track_entry(r.entry[k] as usize, r.tag[k]);
+            let n = ((x_end - x) as usize).min(8);
+            cache.track_lanes::<3>(r.lanes, n);
+            for k in 0..n {
                 let texel = vram[r.address[k] as usize & (VRAM_LEN - 1)];
                 let e = if texel == 0 {
                     0
