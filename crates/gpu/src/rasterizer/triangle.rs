@@ -4,7 +4,7 @@
 
 use super::coverage::{Coverage, triangle_coverage};
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, span, wrap11};
-use crate::color::{DITHER_TABLES, PLAIN_TABLE};
+use crate::color::{DITHER_TABLES, DitheredCells, PLAIN_TABLE};
 use crate::primitive::Triangle;
 use crate::state::BlendMode;
 use crate::state::DrawState;
@@ -363,13 +363,14 @@ impl FlatRows {
     }
 }
 
-/// The rows of one part of a triangle drawn in eight-pixel groups (see [`span::draw`]):
-/// the rows from `y` to `end` (exclusive), `stride` rows apart (negative when walked upward),
-/// `end` a whole number of strides from `y`, the span
-/// `[l >> 32, r >> 32)` at each clipped to the columns `clip`, the edges stepping by `dl`
-/// and `dr`; `attr` holds the attributes at column 0 of row `y` and steps by `attr_step` per
-/// row walked (docs/hardware/gpu.md §3.4-§3.6).
-struct GroupRows {
+/// The rows of one part of a triangle, walked by a routine of their own: the rows from `y`
+/// to `end` (exclusive), `stride` rows apart (negative when walked upward), `end` a whole
+/// number of strides from `y`, the span `[l >> 32, r >> 32)` at each clipped to the columns
+/// `clip`, the edges stepping by `dl` and `dr`; `attr` holds the attributes at column 0 of
+/// row `y` and steps by `attr_step` per row walked (docs/hardware/gpu.md §3.4-§3.6). The
+/// routines are not inlined into the triangle set-up, so that their pixel loops keep their
+/// registers whatever the set-up around the call holds.
+struct PartRows {
     y: i32,
     end: i32,
     stride: i32,
@@ -382,9 +383,185 @@ struct GroupRows {
     attr_step: [u32; 5],
 }
 
-impl GroupRows {
-    /// Draw the spans, the attributes stepping by `step` per pixel; returns the pixels
-    /// drawn. Textured spans under [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
+impl PartRows {
+    /// The `count` rows of `part` from row `start`, `stride` apart, the attributes `attrs`
+    /// at column 0 of each.
+    #[inline(always)]
+    fn new(
+        part: &Part,
+        (start, count, stride): (i32, i32, i32),
+        attrs: &Attributes,
+        clip: (i32, i32),
+    ) -> Self {
+        let Attributes { cv, origin, grads } = attrs;
+        // Attribute `i` at column 0 of row `start`, 8.24 with 32-bit wrap (§3.6).
+        let dy = start.wrapping_sub(cv.y) as u32;
+        let dx = cv.x.wrapping_neg() as u32;
+        PartRows {
+            y: start,
+            end: start + count * stride,
+            stride,
+            l: part.left.at(start),
+            r: part.right.at(start),
+            dl: part.left.step * stride as i64,
+            dr: part.right.step * stride as i64,
+            clip,
+            attr: core::array::from_fn(|i| {
+                origin[i]
+                    .wrapping_add(grads[i].0.wrapping_mul(dx))
+                    .wrapping_add(grads[i].1.wrapping_mul(dy))
+            }),
+            attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
+        }
+    }
+
+    /// [`PartRows::draw`] with its clip and page variants chosen for the sorted vertices
+    /// `v`; returns the pixels drawn.
+    #[inline(always)]
+    fn groups<const TEX: u8, const GOURAUD: bool, const DITHER: bool, const CACHE: u8>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        v: &[Vtx; 3],
+        (step, flat): ([u32; 5], [i32; 3]),
+        env: &PixelEnv,
+        cache: &mut TextureCache,
+    ) -> u32 {
+        // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
+        // inside the area's columns need no clip.
+        let (a, b, c) = (v[0], v[1], v[2]);
+        let (left, right) = self.clip;
+        let inside = a.x.min(b.x).min(c.x) >= left && a.x.max(b.x).max(c.x) <= right;
+        let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
+        match (inside, plain) {
+            (true, false) => {
+                self.draw::<TEX, GOURAUD, DITHER, false, false, CACHE>(vram, step, flat, env, cache)
+            }
+            (false, false) => {
+                self.draw::<TEX, GOURAUD, DITHER, true, false, CACHE>(vram, step, flat, env, cache)
+            }
+            (true, true) => {
+                self.draw::<TEX, GOURAUD, DITHER, false, true, CACHE>(vram, step, flat, env, cache)
+            }
+            (false, true) => {
+                self.draw::<TEX, GOURAUD, DITHER, true, true, CACHE>(vram, step, flat, env, cache)
+            }
+        }
+    }
+
+    /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
+    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel;
+    /// returns what was drawn.
+    #[inline(never)]
+    fn raw15<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        duv: (u32, u32),
+        page: (usize, &mut TextureCache),
+        mask: (u16, BlendMode),
+    ) -> DrawCount {
+        let Self {
+            mut y,
+            end,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            mut attr,
+            attr_step,
+        } = self;
+        let (page, cache) = page;
+        let mut drawn = DrawCount::default();
+        while y != end {
+            let x_start = ((l >> 32) as i32).max(clip.0);
+            let x_end = ((r >> 32) as i32).min(clip.1);
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
+                let uv = (at(3, duv.0), at(4, duv.1));
+                raw15_span::<BLEND, MASK_CHECK, CACHE>(
+                    vram,
+                    (row, x_start, x_end),
+                    uv,
+                    duv,
+                    (page, &mut *cache),
+                    mask,
+                );
+            }
+            for (a, s) in attr.iter_mut().zip(attr_step) {
+                *a = a.wrapping_add(s);
+            }
+            y += stride;
+        }
+        drawn
+    }
+
+    /// Draw the spans one by one ([`span_pixels`]), the attributes stepping by `step` per
+    /// pixel, with the span routines `plan` chose; returns what was drawn.
+    #[inline(never)]
+    fn spans<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const RAW: bool,
+        const BLEND: bool,
+        const DITHER: bool,
+        const MASK_CHECK: bool,
+        const CACHE: u8,
+    >(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        (step, flat): ([u32; 5], [i32; 3]),
+        (plan, env): (&SpanPlan, &PixelEnv),
+        cache: &mut TextureCache,
+    ) -> DrawCount {
+        let Self {
+            mut y,
+            end,
+            stride,
+            mut l,
+            mut r,
+            dl,
+            dr,
+            clip,
+            mut attr,
+            attr_step,
+        } = self;
+        let mut drawn = DrawCount::default();
+        while y != end {
+            let x_start = ((l >> 32) as i32).max(clip.0);
+            let x_end = ((r >> 32) as i32).min(clip.1);
+            l = l.wrapping_add(dl);
+            r = r.wrapping_add(dr);
+            if x_start < x_end {
+                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
+                let acc: [u32; 5] = core::array::from_fn(|i| {
+                    attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
+                });
+                let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
+                span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                    vram,
+                    span,
+                    (acc, step),
+                    flat,
+                    (plan, env),
+                    cache,
+                );
+            }
+            for (a, s) in attr.iter_mut().zip(attr_step) {
+                *a = a.wrapping_add(s);
+            }
+            y += stride;
+        }
+        drawn
+    }
+
+    /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
+    /// `step` per pixel; returns the pixels drawn. Textured spans under
+    /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
     #[inline(never)]
     fn draw<
         const TEX: u8,
@@ -499,7 +676,13 @@ pub(super) fn draw<
 }
 
 /// [`draw`], inlined into a caller that builds the triangle itself, so that its vertices
-/// need not pass through memory.
+/// need not pass through memory. Its steps: a flat untextured opaque triangle goes to
+/// [`draw_flat`]; otherwise the vertices wrapped with the attributes the pipeline
+/// interpolates ([`wrapped_vertices`]), the coverage tests, core vertex, sort and edges
+/// ([`setup`]), the attribute gradients ([`Attributes`]) and the span routine
+/// ([`SpanPlan`]); then each part's rows ([`part_rows`], in the console's order when texels
+/// go through the texture cache) in eight-pixel groups ([`PartRows::groups`]), as a raw
+/// 15-bit page ([`PartRows::raw15`]) or span by span ([`span_pixels`]).
 #[inline(always)]
 pub(super) fn draw_inline<
     const TEX: u8,
@@ -523,10 +706,109 @@ pub(super) fn draw_inline<
         return draw_flat(vram, state, p, color, env.line, rows);
     }
     let mut drawn = DrawCount::default();
-    // Attributes the pipeline does not interpolate are 0, so that the Y sort does not
-    // carry them.
+    let verts = wrapped_vertices::<TEX, GOURAUD>(tri);
+    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
+    let corners = verts.map(|v| (v.x, v.y));
+    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
+        return drawn;
+    }
+    let (v, setup) = setup(verts, |v| (v.x, v.y));
+    let attrs = Attributes::new::<TEX, GOURAUD>(&v, setup.core);
+    let flat = tri.vertices[0].color.map(|c| c as i32);
+    let area = state.area;
+    let clip_rows = (area.top as i32, area.bottom as i32 + 1);
+    let clip = (area.left as i32, area.right as i32 + 1);
+    // Per-triangle copies, so the row and pixel loops keep them in registers.
+    let env = *env;
+    let step = attrs.grads.map(|g| g.0);
+    let plan = SpanPlan::new::<TEX, CACHE, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
+        &env,
+        &v,
+        (clip_rows.0, clip_rows.1, clip.0, clip.1),
+    );
+    // Rows are independent, so they are walked top-down, except where a texel read can
+    // change what a later one sees: through the texture cache, in the console's order (§3.4).
+    let order = if CACHE != mode::OFF && TEX != TEX_NONE {
+        console_order(setup.core)
+    } else {
+        [(0, false), (1, false)]
+    };
+    for (part, upward) in order {
+        let part = &setup.parts[part];
+        let Some((walk, walked)) = part_rows(part, rows, clip_rows, upward) else {
+            continue;
+        };
+        drawn.rows += walked;
+        let walk = PartRows::new(part, walk, &attrs, clip);
+        if plan.groups {
+            let pixels =
+                walk.groups::<TEX, GOURAUD, DITHER, CACHE>(vram, &v, (step, flat), &env, cache);
+            drawn.pixels += pixels;
+            continue;
+        }
+        let d = match plan.raw15_page {
+            Some(page) => {
+                let mask = (env.mask_or, env.blend);
+                walk.raw15::<BLEND, MASK_CHECK, CACHE>(
+                    vram,
+                    (step[3], step[4]),
+                    (page, cache),
+                    mask,
+                )
+            }
+            None => walk.spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                vram,
+                (step, flat),
+                (&plan, &env),
+                cache,
+            ),
+        };
+        (drawn.pixels, drawn.pairs) = (drawn.pixels + d.pixels, drawn.pairs + d.pairs);
+    }
+    drawn
+}
+
+/// The rows of `part` a primitive drawing `rows` walks inside the clip rows
+/// `[top, bottom)`: `(start, count, stride)`, `count` rows from `start`, `stride` apart
+/// (negative when `upward`: from the part's bottom row), and the rows walked as the
+/// drawing-time model counts them; `None` when there are none (docs/hardware/gpu.md §3.4).
+#[inline(always)]
+fn part_rows(
+    part: &Part,
+    rows: super::Rows,
+    (top, bottom): (i32, i32),
+    upward: bool,
+) -> Option<((i32, i32, i32), u32)> {
+    let first = rows.first(part.top.max(top));
+    let last = part.bottom.min(bottom);
+    if first >= last {
+        return None;
+    }
+    let every = match rows {
+        super::Rows::All => 1,
+        super::Rows::SkipParity(_) => 2,
+    };
+    let count = (last - first + every - 1) / every;
+    let walk = if upward {
+        (first + (count - 1) * every, count, -every)
+    } else {
+        (first, count, every)
+    };
+    Some((walk, rows.count(first, last)))
+}
+
+/// Whether the pipeline interpolates attribute `i` (0-2 colour, 3-4 U and V).
+#[inline(always)]
+const fn used<const TEX: u8, const GOURAUD: bool>(i: usize) -> bool {
+    (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3)
+}
+
+/// The triangle's vertices wrapped to 11 bits (docs/hardware/gpu.md §3.5), with the
+/// attributes the pipeline does not interpolate 0, so that the Y sort does not carry them.
+#[inline(always)]
+fn wrapped_vertices<const TEX: u8, const GOURAUD: bool>(tri: &Triangle) -> [Vtx; 3] {
     let (shaded, textured) = (GOURAUD, TEX != TEX_NONE);
-    let verts = tri.vertices.map(|p| Vtx {
+    tri.vertices.map(|p| Vtx {
         x: wrap11(p.x),
         y: wrap11(p.y),
         attr: [
@@ -536,230 +818,188 @@ pub(super) fn draw_inline<
             if textured { p.u as i32 } else { 0 },
             if textured { p.v as i32 } else { 0 },
         ],
-    });
-    // Size drop, zero area, clipped away (docs/hardware/gpu.md §3.2, §3.6).
-    let corners = verts.map(|v| (v.x, v.y));
-    if let Coverage::Dropped(_) = triangle_coverage(corners, &state.area) {
-        return drawn;
-    }
-    let (v, setup) = setup(verts, |v| (v.x, v.y));
-    let (a, b, c) = (v[0], v[1], v[2]);
-    // A select, not an index: the sorted vertices then stay in registers.
-    let cv = match setup.core {
-        0 => a,
-        1 => b,
-        _ => c,
-    };
-    let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
-    // Attribute set-up: 0-2 colour, 3-4 UV.
-    let mut grads = [(0u32, 0u32); 5];
-    let mut origin = [0u32; 5];
-    let used = |i: usize| (GOURAUD && i < 3) || (TEX != TEX_NONE && i >= 3);
-    let divisor = Divisor::new(den);
-    for i in 0..5 {
-        if used(i) {
-            grads[i] = gradient(&v, i, divisor);
-        }
-        origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
-    }
-    let flat = tri.vertices[0].color.map(|c| c as i32);
-    let area = state.area;
-    let (clip_top, clip_bottom) = (area.top as i32, area.bottom as i32 + 1);
-    let (clip_left, clip_right) = (area.left as i32, area.right as i32 + 1);
-    // Per-triangle copies, so the row and pixel loops keep them in registers.
-    let env = *env;
-    let step = grads.map(|g| g.0);
-    // Opaque, unmasked spans whose pixels each need their own colour or texel go eight at a
-    // time; a 4-bit texture under one colour keeps its shaded CLUT instead (undithered, or
-    // dithered with the table of every dither cell, `PixelEnv::dithered`, at hand).
-    // Raw textures need no colour maths and stay pixel by pixel, as does a primitive that
-    // may read texels it has itself written (see `span::texture_clear_of`).
-    let dithered = if TEX == 1 && !GOURAUD && DITHER {
-        env.dithered
-    } else {
-        None
-    };
-    let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
-    // Reads from the cache's copies go pixel by pixel: a rare mode (docs/gpu.md, "Texture
-    // cache") that the fast paths below need not be built for.
-    let copies = CACHE == COPIES;
-    let groups = !copies
-        && !BLEND
-        && !MASK_CHECK
-        && !RAW
-        && (GOURAUD || TEX != TEX_NONE)
-        && !shaded_clut
-        && (TEX == TEX_NONE || {
-            let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
-            span::texture_clear_of(
-                &env.sampler,
-                TEX,
-                (xs.0.max(clip_left), xs.1.min(clip_right)),
-                (a.y.max(clip_top), c.y.min(clip_bottom)),
-            )
-        });
-    // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or raw
-    // 15-bit span reads texel (u, v) from the halfword at its index plus v * 1024 + u / 4 or
-    // + u, and eight-pixel groups compute their eight texel addresses together.
-    let plain_page = if TEX == 1 && !copies {
-        span::plain_page(&env.sampler, TEX)
-    } else {
-        None
-    };
-    let raw15_page = if TEX == 3 && RAW && !copies {
-        span::plain_page(&env.sampler, TEX)
-    } else {
-        None
-    };
+    })
+}
 
-    let every = match rows {
-        super::Rows::All => 1,
-        super::Rows::SkipParity(_) => 2,
-    };
-    // Rows are independent, so they are walked top-down, except where a texel read can
-    // change what a later one sees: through the texture cache, in the console's order (§3.4).
-    let order = if CACHE != crate::texture_cache::mode::OFF && TEX != TEX_NONE {
-        console_order(setup.core)
-    } else {
-        [(0, false), (1, false)]
-    };
-    for (part, upward) in order {
-        let Part {
-            top,
-            bottom,
-            left,
-            right,
-        } = setup.parts[part];
-        let first = rows.first(top.max(clip_top));
-        let last = bottom.min(clip_bottom);
-        if first >= last {
-            continue;
-        }
-        drawn.rows += rows.count(first, last);
-        let count = (last - first + every - 1) / every;
-        let (start, stride) = if upward {
-            (first + (count - 1) * every, -every)
-        } else {
-            (first, every)
+/// A triangle's attributes (0-2 colour, 3-4 U and V): the core vertex, their 8.24 values
+/// there and their gradients per column and per row (docs/hardware/gpu.md §3.6).
+struct Attributes {
+    cv: Vtx,
+    origin: [u32; 5],
+    /// (d/dx, d/dy) of each attribute; 0 for those not interpolated.
+    grads: [(u32, u32); 5],
+}
+
+impl Attributes {
+    /// The set-up of the sorted vertices `v` with the core vertex at `core`.
+    #[inline(always)]
+    fn new<const TEX: u8, const GOURAUD: bool>(v: &[Vtx; 3], core: usize) -> Self {
+        let (a, b, c) = (v[0], v[1], v[2]);
+        // A select, not an index: the sorted vertices then stay in registers.
+        let cv = match core {
+            0 => a,
+            1 => b,
+            _ => c,
         };
-        let (mut l, mut r) = (left.at(start), right.at(start));
-        let (dl, dr) = (left.step * stride as i64, right.step * stride as i64);
-        if groups {
-            // Attribute `i` at column 0 of row `start`, 8.24 with 32-bit wrap (§3.6).
-            let dy = start.wrapping_sub(cv.y) as u32;
-            let dx = cv.x.wrapping_neg() as u32;
-            let walk = GroupRows {
-                y: start,
-                end: start + count * stride,
-                stride,
-                l,
-                r,
-                dl,
-                dr,
-                clip: (clip_left, clip_right),
-                attr: core::array::from_fn(|i| {
-                    origin[i]
-                        .wrapping_add(grads[i].0.wrapping_mul(dx))
-                        .wrapping_add(grads[i].1.wrapping_mul(dy))
-                }),
-                attr_step: core::array::from_fn(|i| grads[i].1.wrapping_mul(stride as u32)),
-            };
-            // As for flat triangles (see `draw_flat`), spans of a triangle whose vertices lie
-            // inside the area's columns need no clip.
-            let inside = a.x.min(b.x).min(c.x) >= clip_left && a.x.max(b.x).max(c.x) <= clip_right;
-            let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
-            drawn.pixels += match (inside, plain) {
-                (true, false) => walk.draw::<TEX, GOURAUD, DITHER, false, false, CACHE>(
-                    vram, step, flat, &env, cache,
-                ),
-                (false, false) => walk.draw::<TEX, GOURAUD, DITHER, true, false, CACHE>(
-                    vram, step, flat, &env, cache,
-                ),
-                (true, true) => walk.draw::<TEX, GOURAUD, DITHER, false, true, CACHE>(
-                    vram, step, flat, &env, cache,
-                ),
-                (false, true) => walk
-                    .draw::<TEX, GOURAUD, DITHER, true, true, CACHE>(vram, step, flat, &env, cache),
-            };
-            continue;
-        }
-        let mut y = start;
-        for _ in 0..count {
-            let x_start = ((l >> 32) as i32).max(clip_left);
-            let x_end = ((r >> 32) as i32).min(clip_right);
-            l += dl;
-            r += dr;
-            if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let row = ((y & 511) as usize) * VRAM_WIDTH;
-                {
-                    let dx = x_start.wrapping_sub(cv.x) as u32;
-                    let dy = y.wrapping_sub(cv.y) as u32;
-                    let mut acc = [0u32; 5];
-                    for i in 0..5 {
-                        if used(i) {
-                            acc[i] = origin[i]
-                                .wrapping_add(grads[i].0.wrapping_mul(dx))
-                                .wrapping_add(grads[i].1.wrapping_mul(dy));
-                        }
-                    }
-                    let span = (row, y, x_start, x_end);
-                    if let Some(page) = raw15_page {
-                        raw15_span::<BLEND, MASK_CHECK, CACHE>(
-                            vram,
-                            (row, x_start, x_end),
-                            (acc[3], acc[4]),
-                            (step[3], step[4]),
-                            (page, &mut *cache),
-                            (env.mask_or, env.blend),
-                        );
-                        y += stride;
-                        continue;
-                    }
-                    // One copy of the pixel loop per table kind, chosen per span.
-                    match (dithered, plain_page) {
-                        (Some(cells), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true, CACHE>(
-                            vram,
-                            (row, x_start, x_end),
-                            (acc[3], acc[4]),
-                            (step[3], step[4]),
-                            (page, &mut *cache),
-                            (&cells[(y & 3) as usize], &env.lut),
-                            (env.mask_or, env.blend),
-                        ),
-                        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
-                            clut4_span::<BLEND, MASK_CHECK, false, CACHE>(
-                                vram,
-                                (row, x_start, x_end),
-                                (acc[3], acc[4]),
-                                (step[3], step[4]),
-                                (page, &mut *cache),
-                                (&NO_CELLS, &env.lut),
-                                (env.mask_or, env.blend),
-                            )
-                        }
-                        (Some(cells), None) => {
-                            pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
-                                vram,
-                                span,
-                                acc,
-                                step,
-                                flat,
-                                &env,
-                                Some(&cells[(y & 3) as usize]),
-                                cache,
-                            )
-                        }
-                        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
-                            vram, span, acc, step, flat, &env, None, cache,
-                        ),
-                    }
-                }
+        let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
+        let mut grads = [(0u32, 0u32); 5];
+        let mut origin = [0u32; 5];
+        let divisor = Divisor::new(den);
+        for i in 0..5 {
+            if used::<TEX, GOURAUD>(i) {
+                grads[i] = gradient(v, i, divisor);
             }
-            y += stride;
+            origin[i] = (((cv.attr[i] as u32) << 12) + (1 << 11)) << 12;
+        }
+        Self { cv, origin, grads }
+    }
+}
+
+/// How a triangle's spans are drawn, chosen once per triangle.
+struct SpanPlan<'a> {
+    /// In eight-pixel groups ([`PartRows::groups`]).
+    groups: bool,
+    /// A flat-modulated dithered 4-bit texture's CLUT shaded for every dither cell.
+    dithered: Option<&'a DitheredCells>,
+    /// A 4-bit page the window and VRAM wraps leave alone (`span::plain_page`).
+    plain_page: Option<usize>,
+    /// A raw 15-bit page the window and VRAM wraps leave alone.
+    raw15_page: Option<usize>,
+}
+
+impl<'a> SpanPlan<'a> {
+    /// The plan for the sorted vertices `v` clipped to rows `top..bottom` and columns
+    /// `left..right`, under the pipeline of the const parameters.
+    #[inline(always)]
+    fn new<
+        const TEX: u8,
+        const CACHE: u8,
+        const GOURAUD: bool,
+        const RAW: bool,
+        const BLEND: bool,
+        const DITHER: bool,
+        const MASK_CHECK: bool,
+    >(
+        env: &PixelEnv<'a>,
+        v: &[Vtx; 3],
+        (top, bottom, left, right): (i32, i32, i32, i32),
+    ) -> Self {
+        let (a, b, c) = (v[0], v[1], v[2]);
+        // Opaque, unmasked spans whose pixels each need their own colour or texel go eight
+        // at a time; a 4-bit texture under one colour keeps its shaded CLUT instead
+        // (undithered, or dithered with the table of every dither cell,
+        // `PixelEnv::dithered`, at hand). Raw textures need no colour maths and stay pixel by
+        // pixel, as does a primitive that may read texels it has itself written (see
+        // `span::texture_clear_of`).
+        let dithered = if TEX == 1 && !GOURAUD && DITHER {
+            env.dithered
+        } else {
+            None
+        };
+        let shaded_clut = TEX == 1 && !GOURAUD && (!DITHER || dithered.is_some());
+        // Reads from the cache's copies go pixel by pixel: a rare mode (docs/gpu.md,
+        // "Texture cache") that the fast paths need not be built for.
+        let copies = CACHE == COPIES;
+        let groups = !copies
+            && !BLEND
+            && !MASK_CHECK
+            && !RAW
+            && (GOURAUD || TEX != TEX_NONE)
+            && !shaded_clut
+            && (TEX == TEX_NONE || {
+                let xs = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x) + 1);
+                span::texture_clear_of(
+                    &env.sampler,
+                    TEX,
+                    (xs.0.max(left), xs.1.min(right)),
+                    (a.y.max(top), c.y.min(bottom)),
+                )
+            });
+        // A page the window and the VRAM wraps leave alone (`span::plain_page`): a 4-bit or
+        // raw 15-bit span reads texel (u, v) from the halfword at its index plus
+        // v * 1024 + u / 4 or + u, and eight-pixel groups compute their eight texel
+        // addresses together.
+        let plain_page = if TEX == 1 && !copies {
+            span::plain_page(&env.sampler, TEX)
+        } else {
+            None
+        };
+        let raw15_page = if TEX == 3 && RAW && !copies {
+            span::plain_page(&env.sampler, TEX)
+        } else {
+            None
+        };
+        Self {
+            groups,
+            dithered,
+            plain_page,
+            raw15_page,
         }
     }
-    drawn
+}
+
+/// The span `[x_start, x_end)` of line `y` (VRAM row offset `row`), its attributes at
+/// `x_start` and their steps `(acc, step)`, with one copy of the pixel loop per table kind,
+/// chosen per span by `plan`; texels read in the texture cache mode `CACHE`.
+#[inline(always)]
+fn span_pixels<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const RAW: bool,
+    const BLEND: bool,
+    const DITHER: bool,
+    const MASK_CHECK: bool,
+    const CACHE: u8,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    span: (usize, i32, i32, i32),
+    (acc, step): ([u32; 5], [u32; 5]),
+    flat: [i32; 3],
+    (plan, env): (&SpanPlan, &PixelEnv),
+    cache: &mut TextureCache,
+) {
+    let (row, y, x_start, x_end) = span;
+    let (uv, duv, mask) = (
+        (acc[3], acc[4]),
+        (step[3], step[4]),
+        (env.mask_or, env.blend),
+    );
+    let line = (y & 3) as usize;
+    match (plan.dithered, plan.plain_page) {
+        (Some(c), Some(page)) => clut4_span::<BLEND, MASK_CHECK, true, CACHE>(
+            vram,
+            (row, x_start, x_end),
+            uv,
+            duv,
+            (page, cache),
+            (&c[line], &env.lut),
+            mask,
+        ),
+        (None, Some(page)) if TEX == 1 && !GOURAUD && !DITHER => {
+            clut4_span::<BLEND, MASK_CHECK, false, CACHE>(
+                vram,
+                (row, x_start, x_end),
+                uv,
+                duv,
+                (page, cache),
+                (&NO_CELLS, &env.lut),
+                mask,
+            )
+        }
+        (Some(c), None) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+            vram,
+            span,
+            acc,
+            step,
+            flat,
+            env,
+            Some(&c[line]),
+            cache,
+        ),
+        (None, _) => pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+            vram, span, acc, step, flat, env, None, cache,
+        ),
+    }
 }
 
 /// Shade `[x_start, x_end)` of line `y` (VRAM row offset `row`) pixel by pixel from the
