@@ -77,7 +77,8 @@ pub use unr::{DivideMode, UnsupportedDivideMode};
 pub struct Gte {
     regs: RegisterFile,
     divide_mode: DivideMode,
-    /// FLAG bits collected while a command runs.
+    /// FLAG bits collected while a command runs, for the commands that do not keep them in
+    /// a local: cleared at the start of such a command's dispatch arm.
     flag_bits: u32,
 }
 
@@ -246,94 +247,109 @@ impl Gte {
     #[inline(always)]
     pub fn execute(&mut self, command: u32) -> Option<u32> {
         let c = Command::new(command);
-        self.flag_bits = 0;
         // One dispatch on bits 0-5 runs the command and yields its cycle count.
         match command & 0x3F {
             opcode_bits::RTPS => {
+                self.flag_bits = 0;
                 self.rtps(c.shift(), c.lm());
                 self.finish(Opcode::Rtps)
             }
             opcode_bits::NCLIP => {
-                self.nclip();
-                self.finish(Opcode::Nclip)
+                let flags = self.nclip();
+                self.finish_with(Opcode::Nclip, flags)
             }
             opcode_bits::OP => {
+                self.flag_bits = 0;
                 self.op(c.shift(), c.lm());
                 self.finish(Opcode::Op)
             }
             opcode_bits::DPCS => {
+                self.flag_bits = 0;
                 self.dpcs(c.shift(), c.lm());
                 self.finish(Opcode::Dpcs)
             }
             opcode_bits::INTPL => {
+                self.flag_bits = 0;
                 self.intpl(c.shift(), c.lm());
                 self.finish(Opcode::Intpl)
             }
             opcode_bits::MVMVA => {
-                self.mvmva(c, c.shift(), c.lm());
-                self.finish(Opcode::Mvmva)
+                let flags = self.mvmva(c, c.shift(), c.lm());
+                self.finish_with(Opcode::Mvmva, flags)
             }
             opcode_bits::NCDS => {
+                self.flag_bits = 0;
                 self.ncds(c.shift(), c.lm());
                 self.finish(Opcode::Ncds)
             }
             opcode_bits::CDP => {
+                self.flag_bits = 0;
                 self.cdp(c.shift(), c.lm());
                 self.finish(Opcode::Cdp)
             }
             opcode_bits::NCDT => {
+                self.flag_bits = 0;
                 self.ncdt(c.shift(), c.lm());
                 self.finish(Opcode::Ncdt)
             }
             opcode_bits::NCCS => {
+                self.flag_bits = 0;
                 self.nccs(c.shift(), c.lm());
                 self.finish(Opcode::Nccs)
             }
             opcode_bits::CC => {
+                self.flag_bits = 0;
                 self.cc(c.shift(), c.lm());
                 self.finish(Opcode::Cc)
             }
             opcode_bits::NCS => {
+                self.flag_bits = 0;
                 self.ncs(c.shift(), c.lm());
                 self.finish(Opcode::Ncs)
             }
             opcode_bits::NCT => {
+                self.flag_bits = 0;
                 self.nct(c.shift(), c.lm());
                 self.finish(Opcode::Nct)
             }
             opcode_bits::SQR => {
+                self.flag_bits = 0;
                 self.sqr(c.shift(), c.lm());
                 self.finish(Opcode::Sqr)
             }
             opcode_bits::DCPL => {
+                self.flag_bits = 0;
                 self.dcpl(c.shift(), c.lm());
                 self.finish(Opcode::Dcpl)
             }
             opcode_bits::DPCT => {
+                self.flag_bits = 0;
                 self.dpct(c.shift(), c.lm());
                 self.finish(Opcode::Dpct)
             }
             opcode_bits::AVSZ3 => {
-                self.avsz3();
-                self.finish(Opcode::Avsz3)
+                let flags = self.avsz3();
+                self.finish_with(Opcode::Avsz3, flags)
             }
             opcode_bits::AVSZ4 => {
-                self.avsz4();
-                self.finish(Opcode::Avsz4)
+                let flags = self.avsz4();
+                self.finish_with(Opcode::Avsz4, flags)
             }
             opcode_bits::RTPT => {
+                self.flag_bits = 0;
                 self.rtpt(c.shift(), c.lm());
                 self.finish(Opcode::Rtpt)
             }
             opcode_bits::GPF => {
-                self.gpf(c.shift(), c.lm());
-                self.finish(Opcode::Gpf)
+                let flags = self.gpf(c.shift(), c.lm());
+                self.finish_with(Opcode::Gpf, flags)
             }
             opcode_bits::GPL => {
-                self.gpl(c.shift(), c.lm());
-                self.finish(Opcode::Gpl)
+                let flags = self.gpl(c.shift(), c.lm());
+                self.finish_with(Opcode::Gpl, flags)
             }
             opcode_bits::NCCT => {
+                self.flag_bits = 0;
                 self.ncct(c.shift(), c.lm());
                 self.finish(Opcode::Ncct)
             }
@@ -350,12 +366,21 @@ impl Gte {
         }
     }
 
-    /// The end of a command: FLAG is the bits its steps set, an error source having brought
-    /// bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each dispatch arm,
-    /// so that the compiler sees which bits the command can set.
+    /// The end of a command that collects its FLAG bits in `flag_bits` (cleared at the
+    /// start of its dispatch arm): FLAG is those bits.
     #[inline(always)]
     fn finish(&mut self, op: Opcode) -> Option<u32> {
-        self.regs.set_flag(Flag::from_register(self.flag_bits));
+        self.finish_with(op, self.flag_bits)
+    }
+
+    /// The end of a command: FLAG is the bits its steps set, `bits`, an error source having
+    /// brought bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each
+    /// dispatch arm, so that the compiler sees which bits the command can set. The short
+    /// commands collect their bits in a local and pass them here, so that their arms touch
+    /// no scratch field (docs/performance.md, "The plain loop").
+    #[inline(always)]
+    fn finish_with(&mut self, op: Opcode, bits: u32) -> Option<u32> {
+        self.regs.set_flag(Flag::from_register(bits));
         Some(op.cycles())
     }
 }

@@ -157,6 +157,21 @@ pub(crate) fn color_entry(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
     packed
 }
 
+/// FLAG bits 16/15 into `flags` for a MAC0-path value outside the 32-bit range
+/// (docs/hardware/gte.md §4). Leaving it takes extreme operands (a quotient near its limit
+/// times an IR near its own), so the test is a branch marked cold rather than a select.
+#[inline(always)]
+pub(crate) fn mac0_flags(flags: &mut u32, value: i64) {
+    if value as i32 as i64 != value {
+        core::hint::cold_path();
+        *flags |= if value < 0 {
+            bit::MAC0_NEGATIVE
+        } else {
+            bit::MAC0_POSITIVE
+        };
+    }
+}
+
 /// MAC1-3 and IR1-3 after one step of a command. Commands carry a step's values to the next
 /// step in locals and store the last step's at the end, which leaves the registers as the
 /// hardware's step-by-step writes do.
@@ -393,19 +408,10 @@ impl Gte {
         self.regs.set_mac(0, value as i32);
     }
 
-    /// FLAG bits 16/15 for a MAC0-path value. Leaving the 32-bit range takes extreme
-    /// operands (a quotient near its limit times an IR near its own), so the test is a
-    /// branch marked cold rather than a select.
+    /// FLAG bits 16/15 for a MAC0-path value ([`mac0_flags`]).
     #[inline(always)]
     pub(crate) fn flag_mac0(&mut self, value: i64) {
-        if value as i32 as i64 != value {
-            core::hint::cold_path();
-            self.flag_bits |= if value < 0 {
-                bit::MAC0_NEGATIVE
-            } else {
-                bit::MAC0_POSITIVE
-            };
-        }
+        mac0_flags(&mut self.flag_bits, value);
     }
 
     /// Colour FIFO push: Cn = clamp(MACn SAR 4, 0, FFh) with FLAG bit 22-n; RGB2 gets
@@ -418,14 +424,20 @@ impl Gte {
         self.regs.push_rgb(packed);
     }
 
-    /// Store a step's MAC1-3 and IR1-3, push `colors` in order onto the colour FIFO and add
-    /// `flags` to FLAG.
+    /// Store a step's MAC1-3 and IR1-3.
     #[inline(always)]
-    pub(crate) fn step_result(&mut self, last: Step, colors: &[u32], flags: u32) {
+    pub(crate) fn store_step(&mut self, last: Step) {
         for n in 0..3 {
             self.regs.set_mac(n + 1, last.mac[n]);
             self.regs.set_ir(n + 1, last.ir[n] as i16);
         }
+    }
+
+    /// Store a step's MAC1-3 and IR1-3, push `colors` in order onto the colour FIFO and add
+    /// `flags` to FLAG.
+    #[inline(always)]
+    pub(crate) fn step_result(&mut self, last: Step, colors: &[u32], flags: u32) {
+        self.store_step(last);
         for &c in colors {
             self.regs.push_rgb(c);
         }

@@ -7,7 +7,7 @@
 //! IR's range on a large share of calls (GPF 7.9 → 9.1 ns with the out-of-line form).
 
 use crate::Gte;
-use crate::mac::{Step, ir_test, is_plain_start, step_with};
+use crate::mac::{Step, color_entry, ir_test, is_plain_start, step_with};
 
 /// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
 /// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
@@ -94,33 +94,42 @@ impl Gte {
         self.push_color();
     }
 
-    /// GPF: MACn = (IRn * IR0) SAR sf.
+    /// GPF: MACn = (IRn * IR0) SAR sf. Returns the FLAG bits.
     #[inline(always)]
-    pub(crate) fn gpf(&mut self, shift: u32, lm: bool) {
-        self.general_interpolate([0; 3], shift, lm);
+    pub(crate) fn gpf(&mut self, shift: u32, lm: bool) -> u32 {
+        self.general_interpolate::<false>(shift, lm)
     }
 
-    /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf.
-    #[inline]
-    pub(crate) fn gpl(&mut self, shift: u32, lm: bool) {
-        let start = [1, 2, 3].map(|n| (self.regs.mac(n) as i64) << shift);
-        self.general_interpolate(start, shift, lm);
+    /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf. Returns the FLAG bits.
+    #[inline(always)]
+    pub(crate) fn gpl(&mut self, shift: u32, lm: bool) -> u32 {
+        with_constant_sf_lm!(shift, lm, self.general_interpolate::<true>(shift, lm))
     }
 
-    /// MACn = (start_n + IRn * IR0) SAR sf, IRn by lm, and the colour pushed (GPF, GPL).
+    /// MACn = (start_n + IRn * IR0) SAR sf, IRn by lm, and the colour pushed (GPF, GPL),
+    /// start_n being MACn << sf with `FROM_MAC` (GPL) and 0 otherwise (GPF). Returns the
+    /// FLAG bits.
     #[inline(always)]
-    fn general_interpolate(&mut self, start: [i64; 3], shift: u32, lm: bool) {
+    fn general_interpolate<const FROM_MAC: bool>(&mut self, shift: u32, lm: bool) -> u32 {
+        let start = if FROM_MAC {
+            [1, 2, 3].map(|n| (self.regs.mac(n) as i64) << shift)
+        } else {
+            [0; 3]
+        };
         let ir0 = self.regs.ir(0) as i64;
         let products = self.ir_vector().map(|ir| [ir * ir0]);
         let plain = start.iter().all(|&s| is_plain_start(s, 1));
         // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
         // saturate one by one.
-        // The FLAG bits in a local, added once: GPL's sums leave the 44-bit range in a loop
-        // of the command, and flagged through the field on each addition they cost GPL 2.5
-        // times its time (docs/performance.md, "The plain loop").
+        // The FLAG bits in a local, returned to the dispatch: GPL's sums leave the 44-bit
+        // range in a loop of the command, and flagged through a field on each addition they
+        // cost GPL 2.5 times its time (docs/performance.md, "The plain loop").
         let mut flags = 0;
         let last = step_with::<1, { ir_test::EACH }>(&mut flags, start, products, plain, shift, lm);
-        self.step_result(last, &[], flags);
-        self.push_color();
+        self.store_step(last);
+        let code = self.regs.rgbc() & 0xFF00_0000;
+        let color = color_entry(&mut flags, last.mac, code);
+        self.regs.push_rgb(color);
+        flags
     }
 }

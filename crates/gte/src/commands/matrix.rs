@@ -19,13 +19,14 @@ impl Gte {
     }
 
     /// MVMVA: MAC/IR = cv + mx * v with the selected operands (docs/hardware/gte.md §8).
+    /// Returns the FLAG bits.
     #[inline(always)]
-    pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) {
-        with_constant_sf_lm!(shift, lm, self.mvmva_with(c, shift, lm));
+    pub(crate) fn mvmva(&mut self, c: Command, shift: u32, lm: bool) -> u32 {
+        with_constant_sf_lm!(shift, lm, self.mvmva_with(c, shift, lm))
     }
 
     #[inline(always)]
-    fn mvmva_with(&mut self, c: Command, shift: u32, lm: bool) {
+    fn mvmva_with(&mut self, c: Command, shift: u32, lm: bool) -> u32 {
         // A stored matrix, V0-2 and TR, BK or none: operands read at offsets from the
         // selector fields, without a dispatch on each.
         let (mx, v, cv) = c.mvmva_fields();
@@ -33,8 +34,7 @@ impl Gte {
             let m = self.regs.stored_matrix_wide(mx);
             let v = self.regs.v(v).map(i64::from);
             let (t, plain) = self.regs.add_vector(cv);
-            self.multiply_add(&m, v, t, plain, shift, lm);
-            return;
+            return self.multiply_add(&m, v, t, plain, shift, lm);
         }
         let m = match c.mx() {
             MatrixSel::Rotation => self.regs.rt_wide(),
@@ -58,16 +58,17 @@ impl Gte {
             TranslationSel::Translation => (self.regs.tr(), self.regs.tr_plain()),
             TranslationSel::Background => (self.regs.bk(), self.regs.bk_plain()),
             TranslationSel::FarColor => {
+                self.flag_bits = 0;
                 self.mvmva_far_color_bug(&m, v, shift, lm);
-                return;
+                return self.flag_bits;
             }
             TranslationSel::None => ([0; 3], true),
         };
-        self.multiply_add(&m, v, t, plain, shift, lm);
+        self.multiply_add(&m, v, t, plain, shift, lm)
     }
 
     /// MAC1-3 and IR1-3 = (t << 12 + m * v) SAR sf, IR by lm (docs/hardware/gte.md §4);
-    /// `plain` as for [`crate::mac::accumulate`].
+    /// `plain` as for [`crate::mac::accumulate`]. Returns the FLAG bits.
     #[inline(always)]
     fn multiply_add(
         &mut self,
@@ -77,14 +78,15 @@ impl Gte {
         plain: bool,
         shift: u32,
         lm: bool,
-    ) {
+    ) -> u32 {
         let start = t.map(|t| (t as i64) << 12);
         let mut flags = 0;
         // The three sums first, then their MAC/IR: fewer values live at once. Each IR is
         // tested on its own, its saturation off the straight path (`ir_test::EACH_RARE`).
         let sums = row_sums(&mut flags, start, &matrix_products(m, v), plain);
         let last = mac_ir_each_row::<true>(&mut flags, sums, shift, lm);
-        self.step_result(last, &[], flags);
+        self.store_step(last);
+        flags
     }
 
     /// cv=2: per row, FC<<12 + M_n1*V1 is formed and flagged (44-bit and an IR check with the

@@ -7,39 +7,46 @@
 //! saturates ("Saturation tests", "Straight paths and tests folded into others").
 
 use crate::Gte;
-use crate::mac::bit;
+use crate::mac::{bit, mac0_flags};
 
 impl Gte {
-    /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md §7).
+    /// NCLIP: MAC0 = the signed doubled area of triangle SXY0, SXY1, SXY2 (docs/hardware/gte.md
+    /// §7). Returns the FLAG bits.
     #[inline(always)]
-    pub(crate) fn nclip(&mut self) {
+    pub(crate) fn nclip(&mut self) -> u32 {
         let (x0, y0) = self.regs.sxy(0);
         let (x1, y1) = self.regs.sxy(1);
         let (x2, y2) = self.regs.sxy(2);
         // x0*y1 + x1*y2 + x2*y0 - x0*y2 - x1*y0 - x2*y1 as the cross product of the edges
         // from vertex 0: the same integer, in two products.
         let area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
-        self.set_mac0(area);
+        let mut flags = 0;
+        mac0_flags(&mut flags, area);
+        self.regs.set_mac(0, area as i32);
+        flags
     }
 
-    /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
+    /// AVSZ3: OTZ = ZSF3 * (SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7). Returns the
+    /// FLAG bits.
     #[inline(always)]
-    pub(crate) fn avsz3(&mut self) {
+    pub(crate) fn avsz3(&mut self) -> u32 {
         let sz = |n| self.regs.sz(n) as i64;
         let sum = sz(1) + sz(2) + sz(3);
-        self.average_z(self.regs.zsf().0 as i64 * sum);
+        self.average_z(self.regs.zsf().0 as i64 * sum)
     }
 
-    /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7).
+    /// AVSZ4: OTZ = ZSF4 * (SZ0 + SZ1 + SZ2 + SZ3) SAR 12 (docs/hardware/gte.md §7). Returns
+    /// the FLAG bits.
     #[inline(always)]
-    pub(crate) fn avsz4(&mut self) {
+    pub(crate) fn avsz4(&mut self) -> u32 {
         let sz = |n| self.regs.sz(n) as i64;
         let sum = sz(0) + sz(1) + sz(2) + sz(3);
-        self.average_z(self.regs.zsf().1 as i64 * sum);
+        self.average_z(self.regs.zsf().1 as i64 * sum)
     }
 
-    /// MAC0 = `s` and OTZ = `s` SAR 12 saturated to 0..=FFFFh, with their flags.
-    fn average_z(&mut self, s: i64) {
+    /// MAC0 = `s` and OTZ = `s` SAR 12 saturated to 0..=FFFFh; returns their FLAG bits.
+    #[inline(always)]
+    fn average_z(&mut self, s: i64) -> u32 {
         let otz = s >> 12;
         // OTZ inside 0..=FFFFh is one unsigned compare, and it puts `s` inside 0..2^28, so
         // MAC0 needs no test of its own. Outside takes a sum of Z values past 3 or 4 times
@@ -48,11 +55,14 @@ impl Gte {
         if otz as u64 <= 0xFFFF {
             self.regs.set_mac(0, s as i32);
             self.regs.set_otz(otz as u16);
+            0
         } else {
             core::hint::cold_path();
-            self.set_mac0(s);
+            let mut flags = bit::SZ3_OTZ;
+            mac0_flags(&mut flags, s);
+            self.regs.set_mac(0, s as i32);
             self.regs.set_otz(if otz < 0 { 0 } else { 0xFFFF });
-            self.flag_bits |= bit::SZ3_OTZ;
+            flags
         }
     }
 }
