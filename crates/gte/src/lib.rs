@@ -313,9 +313,8 @@ impl Gte {
                 self.finish(Opcode::Nct)
             }
             opcode_bits::SQR => {
-                self.flag_bits = 0;
-                self.sqr(c.shift(), c.lm());
-                self.finish(Opcode::Sqr)
+                let flags = self.sqr(c.shift());
+                self.finish_with(Opcode::Sqr, flags)
             }
             opcode_bits::DCPL => {
                 self.flag_bits = 0;

@@ -5,11 +5,12 @@
 //! dispatching on each (327 → 319 instructions a call, docs/performance.md, "Where the
 //! per-call time went"), and its step's three rows are written out (`row_sums`): left as a
 //! `core::array::from_fn` call, its nine products went through the stack (17.62 → 12.54 ns,
-//! "The timed loop").
+//! "The timed loop"). SQR uses that its squares are never negative: one compare per row
+//! ("The plain loop").
 
 use crate::Gte;
 use crate::command::{Command, MatrixSel, TranslationSel, VectorSel};
-use crate::mac::{mac_ir_each_row, matrix_products, row_sums};
+use crate::mac::{bit, mac_ir_each_row, matrix_products, row_sums};
 
 impl Gte {
     /// IR1-3 widened.
@@ -102,14 +103,43 @@ impl Gte {
         }
     }
 
-    /// SQR: MACn = IRn^2 SAR sf, IRn by lm (docs/hardware/gte.md §8).
-    #[inline]
-    pub(crate) fn sqr(&mut self, shift: u32, lm: bool) {
-        let ir = self.ir_vector();
-        for (n, v) in ir.into_iter().enumerate() {
-            let sum = self.accumulate(n + 1, 0, &[v * v]);
-            self.set_mac_ir(n + 1, sum, shift, lm);
+    /// SQR: MACn = IRn^2 SAR sf, IRn = MACn saturated (docs/hardware/gte.md §8). Returns the
+    /// FLAG bits.
+    ///
+    /// A square is at most 2^30 and never negative, so each sum is plain addition and MACn
+    /// lies in 0..=2^30: IRn saturates only at 7FFFh, whatever lm, and one compare per row
+    /// decides it. The saturation is kept off the straight path: with sf = 1 it takes |IRn|
+    /// past 2D41h, and a predicted branch lets IRn's store wait on the square alone where a
+    /// select adds to the chain a loop of SQR runs through IR (docs/performance.md, "The
+    /// plain loop").
+    #[inline(always)]
+    pub(crate) fn sqr(&mut self, shift: u32) -> u32 {
+        // One copy per sf, so that the shift is by a constant.
+        if shift == 0 {
+            self.squares::<0>()
+        } else {
+            self.squares::<12>()
         }
+    }
+
+    /// [`Gte::sqr`] with sf's shift `SHIFT`.
+    #[inline(always)]
+    fn squares<const SHIFT: u32>(&mut self) -> u32 {
+        let ir = self.ir_vector();
+        let mut flags = 0;
+        for (n, v) in ir.into_iter().enumerate() {
+            let mac = ((v * v) as u64 >> SHIFT) as u32;
+            self.regs.set_mac(n + 1, mac as i32);
+            let ir = if mac > 0x7FFF {
+                core::hint::cold_path();
+                flags |= bit::ir(n + 1);
+                0x7FFF
+            } else {
+                mac as i16
+            };
+            self.regs.set_ir(n + 1, ir);
+        }
+        flags
     }
 
     /// OP: outer product of (RT11, RT22, RT33) and IR1-3 (docs/hardware/gte.md §8).
