@@ -24,7 +24,7 @@ use alloc::string::{String, ToString};
 use alloc::vec::Vec;
 
 use crate::Gpu;
-use crate::command_stream::{StreamError, Unfinished, parse_word};
+use crate::command_stream::{StreamError, TIMED_DIRECTIVES, Unfinished, parse_word};
 
 /// CPU cycles of a store to GP0 or GP1 (a store instruction; the write queue absorbs it).
 pub const STORE_CYCLES: u32 = 1;
@@ -121,25 +121,6 @@ pub struct TimedCommand {
     pub line: usize,
     /// What it does.
     pub op: Op,
-}
-
-/// The directives a timed stream adds to the command-stream format.
-const DIRECTIVES: [&str; 10] = [
-    "dma",
-    "dma-read",
-    "dma-block",
-    "read",
-    "wait",
-    "cpu",
-    "timer",
-    "report",
-    "repeat",
-    "end",
-];
-
-/// Whether `word` (lower case) starts a timing directive.
-pub(crate) fn is_directive(word: &str) -> bool {
-    DIRECTIVES.contains(&word)
 }
 
 /// A decimal count.
@@ -269,7 +250,7 @@ pub fn parse(text: &str) -> Result<Vec<TimedCommand>, StreamError> {
             other => {
                 return Err(err(alloc::format!(
                     "unknown line `{other}` (expected gp0, gp1 or a timing directive: {})",
-                    DIRECTIVES.join(", ")
+                    TIMED_DIRECTIVES.join(", ")
                 )));
             }
         };
