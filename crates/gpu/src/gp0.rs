@@ -14,9 +14,10 @@ use crate::command::{self, Command, Kind, LineOp, MAX_PACKET, PolygonOp, Rectang
 use crate::drawing::{Cost, FIFO_WORDS};
 use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex, dither_applies};
 use crate::rasterizer::{
-    DrawCount, Rows, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows,
-    draw_line_rows, draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
+    DrawCount, draw_flat_line, draw_flat_triangle_rows, draw_gouraud_triangle_rows, draw_line_rows,
+    draw_rectangle_rows, draw_tiled_quad, draw_triangle_rows,
 };
+use crate::rows::Rows;
 use crate::state::{ClutAttr, DrawMode, DrawState, DrawingArea, MaskSettings, TextureWindow};
 use crate::texture_cache::WriteRegion;
 use crate::transfer::{self, FillRect, ReadTransfer, TransferRect, WriteTransfer};

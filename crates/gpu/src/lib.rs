@@ -48,6 +48,7 @@ mod ordering_table;
 pub mod precise;
 mod primitive;
 mod rasterizer;
+mod rows;
 #[cfg(feature = "serde")]
 mod save;
 #[cfg(feature = "serde")]

@@ -1,7 +1,7 @@
 //! VRAM transfer commands: fill (02h), VRAM-to-VRAM copy (80h), CPU-to-VRAM (A0h) and
 //! VRAM-to-CPU (C0h) (docs/hardware/gpu.md §8).
 
-use crate::rasterizer::Rows;
+use crate::rows::Rows;
 use crate::state::MaskSettings;
 use crate::{VRAM_LEN, VRAM_WIDTH, Vram};
 

@@ -10,6 +10,7 @@ use super::coverage::exceeds_size_limit;
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, step_away_from_zero, wrap11};
 use crate::color::{DITHER_TABLES, PLAIN_TABLE};
 use crate::primitive::{Line, Vertex};
+use crate::rows::Rows;
 use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
@@ -132,7 +133,7 @@ pub(super) fn draw<
     state: &DrawState,
     env_ref: &PixelEnv,
     line: &Line,
-    rows: super::Rows,
+    rows: Rows,
     cache: &mut crate::texture_cache::TextureCache,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.

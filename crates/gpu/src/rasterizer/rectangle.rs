@@ -9,6 +9,7 @@
 use super::{DrawCount, PixelEnv, TEX_NONE, shade_pixel, wrap11};
 use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
+use crate::rows::Rows;
 use crate::state::{DrawState, DrawingArea};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
@@ -37,7 +38,7 @@ pub(super) fn draw<
     state: &DrawState,
     env_ref: &PixelEnv,
     rect: &Rectangle,
-    filter: super::Rows,
+    filter: Rows,
     cache: &mut crate::texture_cache::TextureCache,
 ) -> DrawCount {
     // A local copy, so the pixel loop keeps it in registers.
