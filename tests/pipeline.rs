@@ -42,7 +42,7 @@ fn object(mesh: usize, position: [f64; 3], rotation: [f64; 3], scale: f64) -> Ob
         color: [128, 128, 128],
         blend: None,
         tessellation: 0,
-        split_extent: wobble::pipeline::DEFAULT_SPLIT_EXTENT,
+        split_extent: wobble::scene::DEFAULT_SPLIT_EXTENT,
     }
 }
 

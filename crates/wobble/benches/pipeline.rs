@@ -81,7 +81,7 @@ pub fn wall_scene() -> Scene {
 fn tessellated(mut scene: Scene, level: u8) -> Scene {
     for o in &mut scene.objects {
         o.tessellation = level;
-        o.split_extent = wobble::pipeline::DEFAULT_SPLIT_EXTENT;
+        o.split_extent = wobble::scene::DEFAULT_SPLIT_EXTENT;
     }
     scene
 }

@@ -286,7 +286,7 @@ fn polygon_cap_is_named() {
         color: [128, 128, 128],
         blend: None,
         tessellation: 0,
-        split_extent: wobble::pipeline::DEFAULT_SPLIT_EXTENT,
+        split_extent: wobble::scene::DEFAULT_SPLIT_EXTENT,
     }];
     let mut r = Renderer::new(scene.clone(), PipelineOptions::default()).unwrap();
     let stats = r.render_frame(0);

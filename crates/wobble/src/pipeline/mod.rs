@@ -32,7 +32,7 @@ mod upload;
 pub mod vram_alloc;
 
 pub use object::{angle, object_transform};
-pub use options::{DEFAULT_SPLIT_EXTENT, PipelineOptions, UnsupportedKnob};
+pub use options::{PipelineOptions, UnsupportedKnob};
 pub use ot_stage::{MAX_POLYGONS, OT_DEPTH, OT_SHIFT};
 pub use stats::{FrameStats, cap_message};
 pub use trace::{

@@ -5,10 +5,6 @@
 use gte::DivideMode;
 use std::fmt;
 
-/// Default split extent of an object (`Object::split_extent`): polygons wider or taller than
-/// this many pixels are split while their object's tessellation level allows.
-pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
-
 /// Knobs, all defaulting to what the scene says and to hardware behaviour.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PipelineOptions {

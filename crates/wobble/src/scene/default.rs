@@ -10,7 +10,9 @@
 use super::animation::Animation;
 use super::mesh::{Mesh, MeshFace, MeshVertex};
 use super::texture::Texture;
-use super::{Camera, Fog, Light, MeshAsset, Object, Scene, Screen, TextureAsset};
+use super::{
+    Camera, DEFAULT_SPLIT_EXTENT, Fog, Light, MeshAsset, Object, Scene, Screen, TextureAsset,
+};
 use gpu::TextureDepth;
 
 /// Index of the drifting textured cube in the default scene's objects.
@@ -56,7 +58,7 @@ pub fn default_scene() -> Scene {
         color: [128, 128, 128],
         blend: None,
         tessellation: 0,
-        split_extent: crate::pipeline::DEFAULT_SPLIT_EXTENT,
+        split_extent: DEFAULT_SPLIT_EXTENT,
     };
     let mut objects = vec![
         object(0, Some(0), [-420.0, -190.0, 650.0], 110.0),

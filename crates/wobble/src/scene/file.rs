@@ -4,8 +4,8 @@
 use super::mesh::Mesh;
 use super::texture::{Texture, depth_from_bits_per_texel};
 use super::{
-    Accuracy, Camera, Fog, InvalidScene, Light, MeshAsset, Object, Scene, SceneError, Screen,
-    TextureAsset,
+    Accuracy, Camera, DEFAULT_SPLIT_EXTENT, Fog, InvalidScene, Light, MeshAsset, Object, Scene,
+    SceneError, Screen, TextureAsset,
 };
 use gpu::TextureDepth;
 use serde::Deserialize;
@@ -214,7 +214,7 @@ impl Scene {
                 split_extent: o
                     .split_extent
                     .or(file.split_extent)
-                    .unwrap_or(crate::pipeline::DEFAULT_SPLIT_EXTENT),
+                    .unwrap_or(DEFAULT_SPLIT_EXTENT),
             });
         }
         let scene = Scene {

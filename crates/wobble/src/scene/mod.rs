@@ -130,6 +130,10 @@ impl Fog {
     }
 }
 
+/// Default split extent of an object ([`Object::split_extent`]): polygons wider or taller than
+/// this many pixels are split while their object's tessellation level allows.
+pub const DEFAULT_SPLIT_EXTENT: u16 = 64;
+
 /// A scene object: a mesh instance with a transform and material.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Object {
@@ -155,7 +159,7 @@ pub struct Object {
     /// A polygon of this object whose screen bounding box is wider or taller than this many
     /// pixels is split, while its tessellation level allows (0: every polygon to the full
     /// level; `u16::MAX`: only polygons that would be dropped whole, the near ones). Default
-    /// [`crate::pipeline::DEFAULT_SPLIT_EXTENT`].
+    /// [`DEFAULT_SPLIT_EXTENT`].
     pub split_extent: u16,
 }
 

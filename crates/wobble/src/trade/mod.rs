@@ -95,7 +95,7 @@ impl Knob {
     pub fn options(self) -> PipelineOptions {
         let hw = PipelineOptions {
             tessellation: Some(0),
-            split_extent: Some(crate::pipeline::DEFAULT_SPLIT_EXTENT),
+            split_extent: Some(crate::scene::DEFAULT_SPLIT_EXTENT),
             ..PipelineOptions::default()
         };
         match self {
