@@ -3,7 +3,7 @@
 //! table ([`HEAT_STOPS`]) so the caption names the colours that are drawn.
 
 use super::charts::{FAMILY, font_registered};
-use super::measure::{decode_texel, wrapped};
+use super::texel_error::texel_error;
 use crate::reference::ReferenceFrame;
 use plotters::prelude::*;
 
@@ -44,23 +44,17 @@ pub fn heat_colour(e: f64) -> [u8; 3] {
     below.1
 }
 
-/// Per-pixel texel error image: [`heat_colour`] where both images show a textured surface,
-/// [`NO_SURFACE`] elsewhere.
+/// Per-pixel texel error image: [`heat_colour`] of the [`texel_error`] where both images show
+/// a textured surface, [`NO_SURFACE`] elsewhere.
 pub fn heat_map(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> image::RgbImage {
     image::RgbImage::from_fn(reference.width as u32, reference.height as u32, |x, y| {
         let i = y as usize * reference.width + x as usize;
-        let texel = (
-            hw.get(i).and_then(|&p| decode_texel(p, scale)),
-            reference.texel.get(i).copied().flatten(),
-            reference.texture_size.get(i).copied().flatten(),
-        );
-        match texel {
-            (Some((hu, hv)), Some((ru, rv)), Some((tw, th))) => {
-                let (du, dv) = (wrapped(hu - ru, tw), wrapped(hv - rv, th));
-                image::Rgb(heat_colour((du * du + dv * dv).sqrt()))
-            }
-            _ => image::Rgb(NO_SURFACE.0),
-        }
+        let error = hw.get(i).and_then(|&p| {
+            let texel = reference.texel.get(i).copied().flatten();
+            let size = reference.texture_size.get(i).copied().flatten();
+            texel_error(p, texel, size, scale)
+        });
+        image::Rgb(error.map_or(NO_SURFACE.0, heat_colour))
     })
 }
 

@@ -2,76 +2,15 @@
 //! reference renderer, vertex jitter, and the divide sweep.
 
 use super::heat::heat_map;
+use super::texel_error::{coordinate_scene, texel_errors};
 use super::{Knob, Row, TradeSettings, configs};
 use crate::pipeline::{PipelineOptions, RenderError, Renderer, UnsupportedKnob, object_transform};
 use crate::reference::{self, ReferenceFrame, rotation};
 use crate::scene::Scene;
 use crate::scene::prepared::prepare;
-use crate::scene::texture::Texture;
-use gpu::TextureDepth;
 use gte::typed::{Geometry, I16F16, Projection, Vector3};
 use gte::{DivideMode, UnsupportedDivideMode};
 use std::time::Instant;
-
-/// A scene whose textures encode their own texel coordinates (15-bit: R = u & 31,
-/// G = v & 31, B = u >> 5 | (v >> 5) << 2, for textures up to 128 texels a side; larger
-/// textures are encoded at half resolution), lit by nothing, undithered, opaque: drawing it
-/// through the pipeline shows which texel the hardware sampled at every pixel.
-pub fn coordinate_scene(scene: &Scene) -> Scene {
-    let mut s = scene.clone();
-    for t in &mut s.textures {
-        let (w, h) = (t.texture.width, t.texture.height);
-        let pixels: Vec<[u8; 4]> = (0..w as usize * h as usize)
-            .map(|i| {
-                let (u, v) = ((i % w as usize) as u32, (i / w as usize) as u32);
-                let (u, v) = if w > 128 || h > 128 {
-                    (u / 2, v / 2)
-                } else {
-                    (u, v)
-                };
-                let b = (u >> 5) | ((v >> 5) << 2);
-                [
-                    ((u & 31) << 3) as u8,
-                    ((v & 31) << 3) as u8,
-                    (b << 3) as u8,
-                    255,
-                ]
-            })
-            .collect();
-        if let Ok(tex) = Texture::from_rgba(w, h, &pixels, TextureDepth::Direct15) {
-            t.texture = tex;
-        }
-    }
-    s.light = None;
-    s.fog = None;
-    s.screen.dither = false;
-    s.screen.background = [0, 0, 0];
-    for o in &mut s.objects {
-        o.blend = None;
-        o.color = if o.texture.is_some() {
-            [128, 128, 128]
-        } else {
-            [0, 0, 0]
-        };
-    }
-    s
-}
-
-/// Decode a coordinate-scene pixel: `None` for background or untextured surfaces.
-pub fn decode_texel(p: u16, scale: i32) -> Option<(i32, i32)> {
-    if p == 0 {
-        return None;
-    }
-    let (r, g, b) = (
-        (p & 31) as i32,
-        ((p >> 5) & 31) as i32,
-        ((p >> 10) & 31) as i32,
-    );
-    Some((
-        (r | (b & 3) << 5) * scale,
-        (g | ((b >> 2) & 3) << 5) * scale,
-    ))
-}
 
 fn frame_pixels(r: &Renderer) -> Vec<u16> {
     let area = r.display_area();
@@ -83,28 +22,6 @@ fn frame_pixels(r: &Renderer) -> Vec<u16> {
         }
     }
     out
-}
-
-/// Distance between two texels of a texture that repeats every `size` texels: the shorter
-/// way round, so a seam between repeats is not an error.
-pub(crate) fn wrapped(d: i32, size: i32) -> f64 {
-    let d = d.rem_euclid(size.max(1));
-    d.min(size - d) as f64
-}
-
-/// Texel errors (Euclidean, in texels, repeat-aware) over pixels where both the hardware and
-/// the reference show a textured surface.
-pub fn texel_errors(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> Vec<f64> {
-    hw.iter()
-        .zip(reference.texel.iter().zip(&reference.texture_size))
-        .filter_map(|(&p, (r, size))| {
-            let (hu, hv) = decode_texel(p, scale)?;
-            let (ru, rv) = (*r)?;
-            let (w, h) = (*size)?;
-            let (du, dv) = (wrapped(hu - ru, w), wrapped(hv - rv, h));
-            Some((du * du + dv * dv).sqrt())
-        })
-        .collect()
 }
 
 /// A vertex's screen position, when it is on screen.

@@ -3,23 +3,24 @@
 //! f64 reference renderer (docs/trade.md).
 //!
 //! [`measure`] takes the figures, [`write_report`] turns them into `trade.md` (every sentence
-//! of its conclusion computed from the figures, [`conclusion`]), the heat module colours the
-//! texel-error maps and draws their colour bar, and the charts module draws the other images.
+//! of its conclusion computed from the figures, [`conclusion`]), the texel_error module
+//! decodes the sampled texels and measures each pixel's [`texel_error`], the heat module
+//! colours the texel-error maps and draws their colour bar, and the charts module draws the
+//! other images.
 
 mod charts;
 mod heat;
 mod measure;
 mod report;
+mod texel_error;
 
 pub use charts::curve_image;
 pub use heat::{
     BAR_HEIGHT, HEAT_STOPS, NO_SURFACE, colour_bar, colour_words, heat_colour, heat_map,
 };
-pub use measure::{
-    Measurement, Skipped, coordinate_scene, decode_texel, divide_stability, measure, texel_errors,
-    vertex_jitter,
-};
+pub use measure::{Measurement, Skipped, divide_stability, measure, vertex_jitter};
 pub use report::{conclusion, figures_table, write_report};
+pub use texel_error::{coordinate_scene, decode_texel, texel_error, texel_errors};
 
 use crate::pipeline::{PipelineOptions, RenderError};
 use gte::DivideMode;
