@@ -6,16 +6,10 @@
 use gpu::{Beam, EventKind, Events, Gpu, VideoStandard};
 use proptest::prelude::*;
 
-/// GP1(08h) mode bits.
-const PAL: u32 = 0x08;
-const INTERLACE: u32 = 0x20;
-const LINES480: u32 = 0x04;
+#[path = "support/video.rs"]
+mod video;
 
-fn gpu(standard: VideoStandard, mode: u32) -> Gpu {
-    let mut g = Gpu::with_standard(standard);
-    g.gp1(0x0800_0000 | mode);
-    g
-}
+use video::{INTERLACE, LINES480, PAL, gpu, ranged, sequence};
 
 /// The beam after `cpu` CPU cycles from power-on, computed from the clock alone: video cycles
 /// `cpu * clock / 33,868,800` rounded down; lines of 3413 (NTSC) or 3406 (PAL) cycles; fields
@@ -67,13 +61,7 @@ fn expected_beam(
 
 /// A deterministic sequence of chunk sizes in 1..=`max`.
 fn chunks(seed: u64, max: u64) -> impl Iterator<Item = u32> {
-    let mut x = seed;
-    std::iter::repeat_with(move || {
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((x >> 33) % max) as u32 + 1
-    })
+    sequence(seed).map(move |x| (x % max) as u32 + 1)
 }
 
 #[test]
@@ -91,9 +79,7 @@ fn beam_follows_the_clock() {
         (VideoStandard::Pal, 0x40),
     ] {
         for ((x1, x2), (y1, y2)) in ranges {
-            let mut g = gpu(standard, mode);
-            g.gp1(0x0600_0000 | x2 << 12 | x1);
-            g.gp1(0x0700_0000 | y2 << 10 | y1);
+            let mut g = ranged(standard, mode, (x1, x2), (y1, y2));
             let mut cpu = 0u64;
             for c in chunks(mode as u64 * 7 + x1 as u64, 40_000).take(3000) {
                 g.run(c);
@@ -381,9 +367,7 @@ proptest! {
         x1 in 0u32..4096, x2 in 0u32..4096, y1 in 0u32..1024, y2 in 0u32..1024,
         splits in prop::collection::vec(1u32..200_000, 1..40),
     ) {
-        let mut a = gpu(VideoStandard::Pal, mode);
-        a.gp1(0x0600_0000 | x2 << 12 | x1);
-        a.gp1(0x0700_0000 | y2 << 10 | y1);
+        let mut a = ranged(VideoStandard::Pal, mode, (x1, x2), (y1, y2));
         let mut b = a.clone();
         a.run(splits.iter().sum());
         for s in &splits {
@@ -403,9 +387,7 @@ proptest! {
         x1 in 0u32..4096, x2 in 0u32..4096, y1 in 0u32..1024, y2 in 0u32..1024,
         pre in 0u32..2_000_000,
     ) {
-        let mut g = gpu(VideoStandard::Ntsc, mode);
-        g.gp1(0x0600_0000 | x2 << 12 | x1);
-        g.gp1(0x0700_0000 | y2 << 10 | y1);
+        let mut g = ranged(VideoStandard::Ntsc, mode, (x1, x2), (y1, y2));
         g.run(pre);
         for kind in KINDS {
             let n = g.cycles_until(kind);

@@ -5,16 +5,10 @@
 use gpu::{CPU_CLOCK_HZ, Events, Gpu, VideoStandard};
 use proptest::prelude::*;
 
-/// GP1(08h) mode bits.
-const PAL: u32 = 0x08;
-const INTERLACE: u32 = 0x20;
-const LINES480: u32 = 0x04;
+#[path = "support/video.rs"]
+mod video;
 
-fn gpu(standard: VideoStandard, mode: u32) -> Gpu {
-    let mut g = Gpu::with_standard(standard);
-    g.gp1(0x0800_0000 | mode);
-    g
-}
+use video::{INTERLACE, LINES480, PAL, gpu, ranged, sequence};
 
 /// Step from event to event until `n` vblank starts have happened; CPU cycles taken from
 /// the first to the last.
@@ -348,13 +342,7 @@ fn timer_inputs_match_the_console_log() {
 
 /// A deterministic sequence of odd chunk sizes in 1..=`max`.
 fn chunks(seed: u64, max: u64) -> impl Iterator<Item = u32> {
-    let mut x = seed;
-    std::iter::repeat_with(move || {
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((x >> 33) % max) as u32 | 1
-    })
+    sequence(seed).map(move |x| (x % max) as u32 | 1)
 }
 
 #[test]
@@ -427,9 +415,7 @@ proptest! {
         x1 in 0u32..4096, x2 in 0u32..4096, y1 in 0u32..1024, y2 in 0u32..1024,
         splits in prop::collection::vec(1u32..200_000, 1..40),
     ) {
-        let mut a = gpu(VideoStandard::Ntsc, mode);
-        a.gp1(0x0600_0000 | x2 << 12 | x1);
-        a.gp1(0x0700_0000 | y2 << 10 | y1);
+        let mut a = ranged(VideoStandard::Ntsc, mode, (x1, x2), (y1, y2));
         let mut b = a.clone();
         let total: u32 = splits.iter().sum();
         let whole = a.run(total);
@@ -456,9 +442,7 @@ proptest! {
         x1 in 0u32..4096, x2 in 0u32..4096, y1 in 0u32..1024, y2 in 0u32..1024,
         pre in 0u32..2_000_000,
     ) {
-        let mut g = gpu(VideoStandard::Pal, mode);
-        g.gp1(0x0600_0000 | x2 << 12 | x1);
-        g.gp1(0x0700_0000 | y2 << 10 | y1);
+        let mut g = ranged(VideoStandard::Pal, mode, (x1, x2), (y1, y2));
         g.run(pre);
         let n = g.cycles_until_next_event();
         if n != u32::MAX {
