@@ -329,20 +329,21 @@ fn masked_pixels_still_read_their_texels() {
     assert_eq!(g.vram().pixel(100, 450), 0x8000);
 }
 
+/// The texel at (x, y) of the page [`draw_over_own_texture`] reads: distinct in each of the
+/// first 31 columns of a row, never 0.
+fn own_texel(x: usize, y: usize) -> u16 {
+    (((x + 3 * y) % 31 + 1) | ((y % 31 + 1) << 5)) as u16
+}
+
 /// A Gouraud-textured triangle (GP0(34h), neutral colour 80h, undithered: each pixel its
-/// texel, §6) drawn over its own 15-bit page one pixel to the right of the texels it reads:
-/// pixel x of a row reads texel x - 1 from the cache. A row's entries are loaded as the row
-/// reaches them, each when its first halfword c is read by pixel c + 1, after pixel c wrote
-/// halfword c: so texel c of every entry but the first comes out as pixel c wrote it (texel
-/// c - 1), the three others as they were.
-#[test]
-fn a_primitive_reads_the_cache_not_its_own_pixels() {
-    let mut g = gpu(true);
+/// texel, §6) drawn over its own 15-bit page at (0, 0), filled with [`own_texel`], one pixel to
+/// the right of the texels it reads: pixel x of a row reads texel x - 1. Rows 0-29 draw
+/// pixels 1 to 30 - y. GP0(E1h) selects the same page first.
+fn draw_over_own_texture(g: &mut Gpu) {
     g.gp0(0xE100_0100);
-    let texel = |x: usize, y: usize| (((x + 3 * y) % 31 + 1) | ((y % 31 + 1) << 5)) as u16;
     for y in 0..40 {
         for x in 0..40 {
-            g.vram_mut().set_pixel(x, y, texel(x, y));
+            g.vram_mut().set_pixel(x, y, own_texel(x, y));
         }
     }
     g.gp0_words(&[
@@ -356,15 +357,39 @@ fn a_primitive_reads_the_cache_not_its_own_pixels() {
         xy(1, 32),
         32 << 8,
     ]);
+}
+
+/// [`draw_over_own_texture`] with the cache on: pixel x of a row reads texel x - 1 from the
+/// cache. A row's entries are loaded as the row reaches them, each when its first halfword c
+/// is read by pixel c + 1, after pixel c wrote halfword c: so texel c of every entry but the
+/// first comes out as pixel c wrote it (texel c - 1), the three others as they were.
+#[test]
+fn a_primitive_reads_the_cache_not_its_own_pixels() {
+    let mut g = gpu(true);
+    draw_over_own_texture(&mut g);
     for y in 0..30usize {
         for x in 1..31 - y {
             let u = x - 1;
             let expected = if u % 4 == 0 && u > 0 {
-                texel(u - 1, y)
+                own_texel(u - 1, y)
             } else {
-                texel(u, y)
+                own_texel(u, y)
             };
             assert_eq!(g.vram().pixel(x, y), expected, "({x}, {y})");
+        }
+    }
+}
+
+/// [`draw_over_own_texture`] with the cache off: each pixel reads from VRAM the texel its left
+/// neighbour has just written, so every row repeats the texel left of its first pixel.
+#[test]
+fn with_the_cache_off_a_primitive_reads_its_own_pixels() {
+    let mut g = gpu(true);
+    g.set_texture_cache(false);
+    draw_over_own_texture(&mut g);
+    for y in 0..30usize {
+        for x in 1..31 - y {
+            assert_eq!(g.vram().pixel(x, y), own_texel(0, y), "({x}, {y})");
         }
     }
 }

@@ -384,7 +384,6 @@ pub(super) fn texture_clear_of(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::Gpu;
     use crate::state::TextureWindow;
     use crate::texture::Sampler;
 
@@ -406,41 +405,5 @@ mod tests {
         assert!(texture_clear_of(&at(960, 0), 3, (192, 960), (0, 1)));
         assert!(!texture_clear_of(&at(0, 384), 3, (0, 1), (100, 110)));
         assert!(texture_clear_of(&at(0, 384), 3, (0, 1), (128, 384)));
-    }
-
-    /// A modulated (neutral colour 80h, undithered) Gouraud-textured triangle drawn over its
-    /// own 15-bit page, one pixel to the right of the texels it samples, with the texture
-    /// cache off: each pixel reads from VRAM the texel its left neighbour has just written,
-    /// so every row repeats the texel left of its first pixel (docs/hardware/gpu.md §6:
-    /// t5 * 80h >> 4 >> 3 = t5). (With the cache on, as on the console, pixels read the
-    /// cached texels instead: tests/texture_cache.rs.)
-    #[test]
-    fn drawing_over_its_own_texture_reads_pixel_by_pixel() {
-        let mut g = Gpu::new();
-        g.set_texture_cache(false);
-        let texel = |x: usize, y: usize| (((x + 3 * y) % 31 + 1) | ((y % 31 + 1) << 5)) as u16;
-        for y in 0..40 {
-            for x in 0..40 {
-                g.vram_mut().set_pixel(x, y, texel(x, y));
-            }
-        }
-        let xy = |x: u32, y: u32| x | y << 16;
-        g.gp0_words(&[0xE300_0000, 0xE407_FFFF, 0xE500_0000]);
-        g.gp0_words(&[
-            0x3480_8080,
-            xy(1, 0),
-            0,
-            0x0080_8080,
-            xy(33, 0),
-            32 | 0x100 << 16,
-            0x0080_8080,
-            xy(1, 32),
-            32 << 8,
-        ]);
-        for y in 0..30usize {
-            for x in 1..31 - y {
-                assert_eq!(g.vram().pixel(x, y), texel(0, y), "({x}, {y})");
-            }
-        }
     }
 }
