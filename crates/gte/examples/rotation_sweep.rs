@@ -12,6 +12,9 @@
 
 use gte::typed::Matrix;
 
+#[path = "../tests/support/rotation.rs"]
+mod rotation;
+
 fn main() {
     let args: Vec<i32> = std::env::args()
         .skip(1)
@@ -21,9 +24,8 @@ fn main() {
         [first, end] => (first.clamp(0, 4096), end.clamp(0, 4096)),
         _ => (0, 4096),
     };
-    let turn = |a: i32| a as f64 / 4096.0 * std::f64::consts::TAU;
-    let sin: Vec<f64> = (0..4096).map(|a| turn(a).sin()).collect();
-    let cos: Vec<f64> = (0..4096).map(|a| turn(a).cos()).collect();
+    let sin: Vec<f64> = (0..4096).map(|a| rotation::radians(a).sin()).collect();
+    let cos: Vec<f64> = (0..4096).map(|a| rotation::radians(a).cos()).collect();
     let (mut worst_entry, mut at_entry) = (0f64, (0, 0, 0));
     let (mut worst_dot, mut at_dot) = (0i64, (0, 0, 0));
     for x in first..end {
@@ -33,11 +35,7 @@ fn main() {
             for z in 0..4096 {
                 let (sz, cz) = (sin[z as usize], cos[z as usize]);
                 let m = Matrix::rotation(x, y, z).to_bits();
-                let exact = [
-                    [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
-                    [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
-                    [-sy, cy * sx, cy * cx],
-                ];
+                let exact = rotation::exact([(sx, cx), (sy, cy), (sz, cz)]);
                 for i in 0..3 {
                     for j in 0..3 {
                         let e = (m[i][j] as f64 - 4096.0 * exact[i][j]).abs();
@@ -46,9 +44,7 @@ fn main() {
                         }
                     }
                     for j in i..3 {
-                        let dot: i64 = (0..3).map(|k| m[i][k] as i64 * m[j][k] as i64).sum();
-                        let identity = if i == j { 1 << 24 } else { 0 };
-                        let d = (dot - identity).abs();
+                        let d = rotation::off_identity(&m, i, j);
                         if d > worst_dot {
                             (worst_dot, at_dot) = (d, (x, y, z));
                         }

@@ -398,27 +398,6 @@ fn fixed_matrix() -> impl Strategy<Value = Matrix> {
     matrix().prop_map(Matrix::from_bits)
 }
 
-fn full_projection() -> impl Strategy<Value = Projection> {
-    (
-        any::<i32>(),
-        any::<i32>(),
-        any::<u16>(),
-        any::<i16>(),
-        any::<i32>(),
-        any::<i16>(),
-        any::<i16>(),
-    )
-        .prop_map(|(ofx, ofy, h, dqa, dqb, zsf3, zsf4)| Projection {
-            offset_x: I16F16::from_bits(ofx),
-            offset_y: I16F16::from_bits(ofy),
-            h,
-            dqa: I8F8::from_bits(dqa),
-            dqb: I8F24::from_bits(dqb),
-            zsf3: I4F12::from_bits(zsf3),
-            zsf4: I4F12::from_bits(zsf4),
-        })
-}
-
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(3000))]
 
@@ -433,14 +412,15 @@ proptest! {
     }
 
     /// Every typed entry point with full-range inputs (every i32/i16/u16/u8 and fixed-point
-    /// bit pattern) in one sequence, run with overflow checks: no panic, and every result
-    /// keeps the documented ranges.
+    /// bit pattern; the projection from `gte::strategy`, full range and its edges) in one
+    /// sequence, run with overflow checks: no panic, and every result keeps the documented
+    /// ranges.
     #[test]
     fn every_entry_point_full_range(
         angles in prop::array::uniform3(any::<i32>()),
         m in prop::array::uniform3(fixed_matrix()),
         tr in prop::array::uniform3(any::<i32>()),
-        p in full_projection(),
+        p in gte::strategy::projection(),
         colors in (prop::array::uniform3(any::<i32>()), prop::array::uniform3(any::<i32>())),
         v in prop::array::uniform3(vector()),
         xy in prop::array::uniform3((any::<i16>(), any::<i16>())),

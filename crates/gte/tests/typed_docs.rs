@@ -14,6 +14,9 @@ use gte::typed::{
 use gte::{DivideMode, Flag};
 use proptest::prelude::*;
 
+#[path = "support/rotation.rs"]
+mod rotation;
+
 /// The FLAG bits of RTPS/RTPT's depth cue (docs/hardware/gte.md §5.7): IR0 and MAC0.
 const DEPTH_CUE_BITS: u32 = 0x1000 | 0x8000 | 0x1_0000;
 
@@ -159,20 +162,12 @@ proptest! {
     #[test]
     fn rotation_error_bound(x in strategy::angle(), y in strategy::angle(), z in strategy::angle()) {
         let m = Matrix::rotation(x, y, z).to_bits();
-        let a = |t: i32| (t & 0xFFF) as f64 / 4096.0 * std::f64::consts::TAU;
-        let (sx, cx, sy, cy, sz, cz) = (a(x).sin(), a(x).cos(), a(y).sin(), a(y).cos(), a(z).sin(), a(z).cos());
-        let exact = [
-            [cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx],
-            [sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx],
-            [-sy, cy * sx, cy * cx],
-        ];
+        let exact = rotation::exact([x, y, z].map(|a| rotation::radians(a).sin_cos()));
         for i in 0..3 {
             for j in 0..3 {
                 let error = (m[i][j] as f64 - 4096.0 * exact[i][j]).abs();
                 prop_assert!(error <= Matrix::ROTATION_ERROR, "entry {},{}: {}", i, j, error);
-                let dot: i64 = (0..3).map(|k| m[i][k] as i64 * m[j][k] as i64).sum();
-                let identity = if i == j { 1i64 << 24 } else { 0 };
-                let off = (dot - identity).abs() as f64 / 4096.0;
+                let off = rotation::off_identity(&m, i, j) as f64 / 4096.0;
                 prop_assert!(off <= Matrix::ROTATION_ORTHOGONALITY, "R·Rᵀ {},{}: {}", i, j, off);
             }
         }

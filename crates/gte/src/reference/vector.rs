@@ -82,13 +82,7 @@ pub fn mvmva(regs: &mut Registers, command: Command) -> Mvmva {
 pub fn sqr(regs: &mut Registers, sf: bool, lm: bool) -> Vector {
     let ir = ir_vector(regs);
     let p = ir.map(|x| [x * x]);
-    let s = step([0; 3], [&p[0], &p[1], &p[2]], if sf { 12 } else { 0 }, lm);
-    store(regs, &s);
-    regs.flag = s.flag;
-    Vector {
-        step: s,
-        flag: s.flag,
-    }
+    products(regs, [&p[0], &p[1], &p[2]], sf, lm)
 }
 
 /// OP (docs/hardware/gte.md §8): the outer product of D = (RT11, RT22, RT33) and IR1-3,
@@ -102,7 +96,13 @@ pub fn op(regs: &mut Registers, sf: bool, lm: bool) -> Vector {
         [i1 * d3, -(i3 * d1)],
         [i2 * d1, -(i1 * d2)],
     ];
-    let s = step([0; 3], [&p[0], &p[1], &p[2]], if sf { 12 } else { 0 }, lm);
+    products(regs, [&p[0], &p[1], &p[2]], sf, lm)
+}
+
+/// SQR's and OP's last step (§8): MACn = the sum of row n's products SAR (sf × 12), IR by
+/// lm; MAC1-3, IR1-3 and FLAG stored.
+fn products(regs: &mut Registers, p: [&[i64]; 3], sf: bool, lm: bool) -> Vector {
+    let s = step([0; 3], p, if sf { 12 } else { 0 }, lm);
     store(regs, &s);
     regs.flag = s.flag;
     Vector {
