@@ -226,6 +226,20 @@ fn holes(frame: &[u16], reference: &[u16], background: u16, width: usize) -> usi
     n
 }
 
+/// `scene` without fog (so the background is one colour), its reference image at `frame` in
+/// 15-bit colour, and that background colour.
+fn unfogged(scene: &Scene, frame: u32) -> (Scene, Vec<u16>, u16) {
+    let mut s = scene.clone();
+    s.fog = None;
+    let background = rgb15(s.screen.background);
+    let reference = reference::render(&s, frame)
+        .rgb
+        .iter()
+        .map(|&p| rgb15(p))
+        .collect();
+    (s, reference, background)
+}
+
 /// Seam pixels of the wall alone (no fog, so the background is one colour) per frame,
 /// every third frame.
 fn wall_seams(options: PipelineOptions) -> Vec<usize> {
@@ -233,14 +247,7 @@ fn wall_seams(options: PipelineOptions) -> Vec<usize> {
     (0..animation.frames)
         .step_by(3)
         .map(|frame| {
-            let mut s = alone(&animation, WALL, frame);
-            s.fog = None;
-            let background = rgb15(s.screen.background);
-            let reference: Vec<u16> = reference::render(&s, frame)
-                .rgb
-                .iter()
-                .map(|&p| rgb15(p))
-                .collect();
+            let (s, reference, background) = unfogged(&alone(&animation, WALL, frame), frame);
             let hw = render(&s, options, frame);
             holes(&hw, &reference, background, usize::from(s.screen.width))
         })
@@ -277,14 +284,7 @@ fn brick_wall_seams_flash_in_hardware_only() {
 fn near_floor_is_split_not_dropped() {
     let animation = default_animation();
     let floor_holes = |scene: &Scene, frame: u32| {
-        let mut s = scene.clone();
-        s.fog = None;
-        let background = rgb15(s.screen.background);
-        let reference: Vec<u16> = reference::render(&s, frame)
-            .rgb
-            .iter()
-            .map(|&p| rgb15(p))
-            .collect();
+        let (s, reference, background) = unfogged(scene, frame);
         let floor = reference.iter().filter(|&&p| p != background).count();
         let hw = render(&s, hardware(), frame);
         (

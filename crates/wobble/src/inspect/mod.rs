@@ -111,6 +111,14 @@ fn write_file(path: &Path, contents: impl AsRef<[u8]>) -> Result<(), String> {
     std::fs::write(path, contents).map_err(|e| io_err(path, e))
 }
 
+/// `data/NAME.js` under `out`: the call `INSPECT.NAME("...")` with `bytes` in base64.
+fn write_base64_data(out: &Path, name: &str, bytes: &[u8]) -> Result<(), String> {
+    write_file(
+        &out.join(format!("data/{name}.js")),
+        format!("INSPECT.{name}(\"{}\");\n", base64(bytes)),
+    )
+}
+
 fn create_dir(path: &Path) -> Result<(), String> {
     std::fs::create_dir_all(path).map_err(|e| io_err(path, e))
 }
@@ -441,22 +449,18 @@ pub fn write_report_with_progress(
     let initial_img = vram_image::vram_image(&summary.initial, Expand::Replicate);
     vram_image::save_png(&initial_img, &out.join("img/initial.png")).map_err(|e| e.to_string())?;
 
-    let mut bytes = Vec::with_capacity(VRAM_LEN * 4);
-    for w in &summary.writers {
-        bytes.extend_from_slice(&w.to_le_bytes());
-    }
-    write_file(
-        &out.join("data/writers.js"),
-        format!("INSPECT.writers(\"{}\");\n", base64(&bytes)),
-    )?;
-    let mut raw = Vec::with_capacity(VRAM_LEN * 2);
-    for p in &summary.final_vram {
-        raw.extend_from_slice(&p.to_le_bytes());
-    }
-    write_file(
-        &out.join("data/vram.js"),
-        format!("INSPECT.vram(\"{}\");\n", base64(&raw)),
-    )?;
+    let writers: Vec<u8> = summary
+        .writers
+        .iter()
+        .flat_map(|w| w.to_le_bytes())
+        .collect();
+    write_base64_data(out, "writers", &writers)?;
+    let vram: Vec<u8> = summary
+        .final_vram
+        .iter()
+        .flat_map(|p| p.to_le_bytes())
+        .collect();
+    write_base64_data(out, "vram", &vram)?;
     let changed_total: u64 = summary.changed.iter().sum();
     let index_json = json!({
         "title": title,
