@@ -7,7 +7,9 @@
 //! ([`Dump::from_text`]), so both replay through the same code; its packets keep the text's
 //! line numbers.
 
+use gpu::command::Command;
 use gpu::command_stream::{self, Entry, Port, StreamCommand, StreamError};
+use gpu::decode::{self, Class};
 use gpu::dump::{
     Dialect, DumpError, GpuVersion, Header, MAX_PACKET_WORDS, Packet, Reader, VsyncTime, Writer,
 };
@@ -425,7 +427,8 @@ impl<'a> Player<'a> {
                         if self.gpu.pending_input().is_none() {
                             self.pending_packet = index;
                             r.commands += 1;
-                            r.draws += u64::from((0x20..=0x7F).contains(&(w >> 24)));
+                            let kind = decode::Kind::Gp0(Command::of(w).kind);
+                            r.draws += u64::from(kind.class() == Class::Draw);
                         }
                         self.gpu.gp0(w);
                     }
