@@ -459,6 +459,27 @@ impl PartRows {
         page: (usize, &mut TextureCache),
         mask: (u16, BlendMode),
     ) -> DrawCount {
+        let (page, cache) = page;
+        self.walk(BLEND || MASK_CHECK, |y, (x_start, x_end), attr| {
+            let row = ((y & 511) as usize) * VRAM_WIDTH;
+            let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
+            let uv = (at(3, duv.0), at(4, duv.1));
+            raw15_span::<BLEND, MASK_CHECK, CACHE>(
+                vram,
+                (row, x_start, x_end),
+                uv,
+                duv,
+                (page, &mut *cache),
+                mask,
+            );
+        })
+    }
+
+    /// Walk the rows: for each whose span `[x_start, x_end)` (clipped) is not empty, count
+    /// it in what was drawn (its pixel pairs read back when `read_back`) and call `span`
+    /// with the row's line, the span and the attributes at column 0 of the row.
+    #[inline(always)]
+    fn walk(self, read_back: bool, mut span: impl FnMut(i32, (i32, i32), &[u32; 5])) -> DrawCount {
         let Self {
             mut y,
             end,
@@ -471,7 +492,6 @@ impl PartRows {
             mut attr,
             attr_step,
         } = self;
-        let (page, cache) = page;
         let mut drawn = DrawCount::default();
         while y != end {
             let x_start = ((l >> 32) as i32).max(clip.0);
@@ -479,18 +499,8 @@ impl PartRows {
             l = l.wrapping_add(dl);
             r = r.wrapping_add(dr);
             if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let row = ((y & 511) as usize) * VRAM_WIDTH;
-                let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
-                let uv = (at(3, duv.0), at(4, duv.1));
-                raw15_span::<BLEND, MASK_CHECK, CACHE>(
-                    vram,
-                    (row, x_start, x_end),
-                    uv,
-                    duv,
-                    (page, &mut *cache),
-                    mask,
-                );
+                drawn.span(x_start, x_end, read_back);
+                span(y, (x_start, x_end), &attr);
             }
             for (a, s) in attr.iter_mut().zip(attr_step) {
                 *a = a.wrapping_add(s);
@@ -518,45 +528,20 @@ impl PartRows {
         (plan, env): (&SpanPlan, &PixelEnv),
         cache: &mut TextureCache,
     ) -> DrawCount {
-        let Self {
-            mut y,
-            end,
-            stride,
-            mut l,
-            mut r,
-            dl,
-            dr,
-            clip,
-            mut attr,
-            attr_step,
-        } = self;
-        let mut drawn = DrawCount::default();
-        while y != end {
-            let x_start = ((l >> 32) as i32).max(clip.0);
-            let x_end = ((r >> 32) as i32).min(clip.1);
-            l = l.wrapping_add(dl);
-            r = r.wrapping_add(dr);
-            if x_start < x_end {
-                drawn.span(x_start, x_end, BLEND || MASK_CHECK);
-                let acc: [u32; 5] = core::array::from_fn(|i| {
-                    attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
-                });
-                let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
-                span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
-                    vram,
-                    span,
-                    (acc, step),
-                    flat,
-                    (plan, env),
-                    cache,
-                );
-            }
-            for (a, s) in attr.iter_mut().zip(attr_step) {
-                *a = a.wrapping_add(s);
-            }
-            y += stride;
-        }
-        drawn
+        self.walk(BLEND || MASK_CHECK, |y, (x_start, x_end), attr| {
+            let acc: [u32; 5] = core::array::from_fn(|i| {
+                attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
+            });
+            let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
+            span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                vram,
+                span,
+                (acc, step),
+                flat,
+                (plan, env),
+                cache,
+            );
+        })
     }
 
     /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
