@@ -44,7 +44,7 @@ pub fn heat_colour(e: f64) -> [u8; 3] {
     below.1
 }
 
-/// Per-pixel texel error image: [`heat_colour`] of the [`texel_error`] where both images show
+/// Per-pixel texel error image: [`heat_colour`] of the texel error where both images show
 /// a textured surface, [`NO_SURFACE`] elsewhere.
 pub fn heat_map(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> image::RgbImage {
     image::RgbImage::from_fn(reference.width as u32, reference.height as u32, |x, y| {

@@ -4,7 +4,7 @@
 //!
 //! [`measure`] takes the figures, [`write_report`] turns them into `trade.md` (every sentence
 //! of its conclusion computed from the figures, [`conclusion`]), the texel_error module
-//! decodes the sampled texels and measures each pixel's [`texel_error`], the heat module
+//! decodes the sampled texels and measures each pixel's texel error, the heat module
 //! colours the texel-error maps and draws their colour bar, and the charts module draws the
 //! other images.
 
@@ -20,7 +20,7 @@ pub use heat::{
 };
 pub use measure::{Measurement, Skipped, divide_stability, measure, vertex_jitter};
 pub use report::{conclusion, figures_table, write_report};
-pub use texel_error::{coordinate_scene, decode_texel, texel_error, texel_errors};
+pub use texel_error::{coordinate_scene, decode_texel, texel_errors};
 
 use crate::pipeline::{PipelineOptions, RenderError};
 use gte::DivideMode;

@@ -78,7 +78,7 @@ fn wrapped(d: i32, size: i32) -> f64 {
 /// The texel error at one pixel (Euclidean, in texels, repeat-aware): coordinate-scene pixel
 /// `p` against the reference's texel `texel` of a texture of `size` texels there; `None` where
 /// either shows no textured surface.
-pub fn texel_error(
+pub(super) fn texel_error(
     p: u16,
     texel: Option<(i32, i32)>,
     size: Option<(i32, i32)>,
@@ -92,7 +92,7 @@ pub fn texel_error(
 }
 
 /// Texel errors over the pixels where both the hardware and the reference show a textured
-/// surface ([`texel_error`]).
+/// surface.
 pub fn texel_errors(hw: &[u16], reference: &ReferenceFrame, scale: i32) -> Vec<f64> {
     hw.iter()
         .zip(reference.texel.iter().zip(&reference.texture_size))
