@@ -25,6 +25,7 @@ use alloc::vec::Vec;
 use crate::command::{self, Command, LineOp, MAX_PACKET, PolygonOp, RectangleOp, Tail};
 use crate::command_stream::{Port, StreamCommand};
 use crate::gp0::{self, Polyline, PolylineStep, line_packet, polygon_packet, rectangle_packet};
+use crate::gp1::Gp1;
 /// The primitives a decoded command carries, as the rasterizer receives them.
 pub use crate::primitive::{Line, Rectangle, Texture, Triangle, Vertex};
 /// What a primitive covers, or why the hardware drops it.
@@ -824,43 +825,32 @@ fn environment(
 }
 
 fn decode_gp1(word: u32) -> Decoded {
-    let op = word >> 24;
-    let name = match op {
-        0x00 => "GP1 reset",
-        0x01 => "GP1 reset command buffer",
-        0x02 => "GP1 acknowledge IRQ",
-        0x03 => "GP1 display enable",
-        0x04 => "GP1 DMA direction",
-        0x05 => "GP1 display start",
-        0x06 => "GP1 horizontal display range",
-        0x07 => "GP1 vertical display range",
-        0x08 => "GP1 display mode",
-        0x09 => "GP1 allow texture disable",
-        0x10..=0x1F => "GP1 get GPU info",
-        _ => "GP1 unused GP1",
+    let command = Gp1::from_word(word);
+    let name = match command {
+        Gp1::Reset => "GP1 reset",
+        Gp1::ResetCommandBuffer => "GP1 reset command buffer",
+        Gp1::AcknowledgeIrq => "GP1 acknowledge IRQ",
+        Gp1::DisplayEnabled(_) => "GP1 display enable",
+        Gp1::DmaDirection(_) => "GP1 DMA direction",
+        Gp1::DisplayStart { .. } => "GP1 display start",
+        Gp1::HorizontalRange { .. } => "GP1 horizontal display range",
+        Gp1::VerticalRange { .. } => "GP1 vertical display range",
+        Gp1::DisplayMode(_) => "GP1 display mode",
+        Gp1::AllowTextureDisable(_) => "GP1 allow texture disable",
+        Gp1::GetInfo(_) => "GP1 get GPU info",
+        Gp1::Unused(_) => "GP1 unused GP1",
     };
     let mut d = Decoded::new(Kind::Gp1, name);
-    // Field layouts: docs/hardware/gpu.md §9 (psx-spx "GPU Display Control Commands").
-    let bits = |shift: u32, mask: u32| ((word >> shift) & mask) as u16;
-    match op {
-        0x03 => d.field(Field::DisplayEnabled(word & 1 == 0)),
-        0x04 => d.field(Field::DmaDirection((word & 3) as u8)),
-        0x05 => d.field(Field::DisplayStart {
-            x: bits(0, 0x3FF),
-            y: bits(10, 0x1FF),
-        }),
-        0x06 => d.field(Field::HorizontalRange {
-            x1: bits(0, 0xFFF),
-            x2: bits(12, 0xFFF),
-        }),
-        0x07 => d.field(Field::VerticalRange {
-            y1: bits(0, 0x3FF),
-            y2: bits(10, 0x3FF),
-        }),
-        0x08 => d.field(Field::DisplayMode(word as u8)),
-        0x09 => d.field(Field::TextureDisableAllowed(word & 1 != 0)),
-        0x10..=0x1F => d.field(Field::InfoRegister((word & 7) as u8)),
-        _ => {}
+    match command {
+        Gp1::DisplayEnabled(enabled) => d.field(Field::DisplayEnabled(enabled)),
+        Gp1::DmaDirection(direction) => d.field(Field::DmaDirection(direction)),
+        Gp1::DisplayStart { x, y } => d.field(Field::DisplayStart { x, y }),
+        Gp1::HorizontalRange { x1, x2 } => d.field(Field::HorizontalRange { x1, x2 }),
+        Gp1::VerticalRange { y1, y2 } => d.field(Field::VerticalRange { y1, y2 }),
+        Gp1::DisplayMode(mode) => d.field(Field::DisplayMode(mode)),
+        Gp1::AllowTextureDisable(allow) => d.field(Field::TextureDisableAllowed(allow)),
+        Gp1::GetInfo(register) => d.field(Field::InfoRegister(register)),
+        Gp1::Reset | Gp1::ResetCommandBuffer | Gp1::AcknowledgeIrq | Gp1::Unused(_) => {}
     }
     d
 }

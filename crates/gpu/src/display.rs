@@ -1,5 +1,6 @@
 //! GP1 display control (docs/hardware/gpu.md §9) and the GPUSTAT register.
 
+use crate::gp1::Gp1;
 use crate::state::{BlendMode, TextureDepth};
 use crate::{Beam, Gpu, drawing, timing};
 
@@ -115,7 +116,8 @@ impl DisplayState {
 }
 
 impl Gpu {
-    /// One word written to the GP1 port (docs/hardware/gpu.md §9).
+    /// One word written to the GP1 port (docs/hardware/gpu.md §9); [`crate::gp1::Gp1`] reads
+    /// and builds the words.
     ///
     /// ```
     /// let mut gpu = gpu::Gpu::new();
@@ -125,26 +127,19 @@ impl Gpu {
     /// assert_eq!(gpu.gpustat() >> 20 & 1, 1); // GPUSTAT bit 20: PAL
     /// ```
     pub fn gp1(&mut self, word: u32) {
-        match word >> 24 {
-            0x00 => self.reset(),
-            0x01 => self.reset_command_buffer(),
-            0x02 => self.irq = false,
-            0x03 => self.display.disabled = word & 1 != 0,
-            0x04 => self.display.dma_direction = (word & 3) as u8,
-            0x05 => {
-                self.display.start_x = (word & 0x3FF) as u16;
-                self.display.start_y = ((word >> 10) & 0x1FF) as u16;
-            }
-            0x06 => {
-                self.display.h_range = ((word & 0xFFF) as u16, ((word >> 12) & 0xFFF) as u16);
-            }
-            0x07 => {
-                self.display.v_range = ((word & 0x3FF) as u16, ((word >> 10) & 0x3FF) as u16);
-            }
-            0x08 => self.display.mode = (word & 0xFF) as u8,
-            0x09 => self.texture_disable_allowed = word & 1 != 0,
-            0x10..=0x1F => self.info(word),
-            _ => {}
+        match Gp1::from_word(word) {
+            Gp1::Reset => self.reset(),
+            Gp1::ResetCommandBuffer => self.reset_command_buffer(),
+            Gp1::AcknowledgeIrq => self.irq = false,
+            Gp1::DisplayEnabled(enabled) => self.display.disabled = !enabled,
+            Gp1::DmaDirection(direction) => self.display.dma_direction = direction,
+            Gp1::DisplayStart { x, y } => (self.display.start_x, self.display.start_y) = (x, y),
+            Gp1::HorizontalRange { x1, x2 } => self.display.h_range = (x1, x2),
+            Gp1::VerticalRange { y1, y2 } => self.display.v_range = (y1, y2),
+            Gp1::DisplayMode(mode) => self.display.mode = mode,
+            Gp1::AllowTextureDisable(allow) => self.texture_disable_allowed = allow,
+            Gp1::GetInfo(register) => self.info(register),
+            Gp1::Unused(_) => {}
         }
     }
 
@@ -179,12 +174,12 @@ impl Gpu {
         self.read = Default::default();
     }
 
-    /// GP1(10h..1Fh): latch internal register `word & 7` into GPUREAD: 2 texture window,
+    /// GP1(10h..1Fh): latch internal register `register` (bits 0-2) into GPUREAD: 2 texture window,
     /// 3/4 drawing area corners (X bits 0-9, Y bits 10-19 on the v2 GPU), 5 drawing offset,
     /// 7 GPU version (2); other indices keep the latch (psx-spx "GP1(10h) Get GPU Info").
-    fn info(&mut self, word: u32) {
+    fn info(&mut self, register: u8) {
         let d = &self.draw;
-        self.gpuread_latch = match word & 7 {
+        self.gpuread_latch = match register {
             2 => {
                 let w = d.window;
                 w.mask_x as u32

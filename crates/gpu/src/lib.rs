@@ -43,6 +43,7 @@ pub mod dump;
 pub mod encode;
 mod frame;
 mod gp0;
+pub mod gp1;
 mod ordering_table;
 #[cfg(feature = "precise")]
 pub mod precise;

@@ -11,6 +11,7 @@
 //!
 //! Run: `cargo run --release -p mini-emulator [out.ppm]`.
 
+use gpu::gp1::Gp1;
 use gpu::{EventKind, Gpu, PixelFormat};
 use gte::Gte;
 use std::path::{Path, PathBuf};
@@ -193,7 +194,7 @@ pub fn run(out: &Path) -> Result<Summary, String> {
         s.video_cycles += u64::from(step);
         if ev.gpu_irq {
             s.gpu_irqs += 1;
-            gpu.gp1(0x0200_0000); // acknowledge IRQ1
+            gpu.gp1(Gp1::AcknowledgeIrq.word());
         }
         if !ev.vblank_start {
             return Err(format!("frame {frame}: no vblank after {step} cycles"));

@@ -4,6 +4,7 @@
 use super::{Dialect, GpuVersion, Sink, VsyncTime, WriteError, Writer};
 use crate::dma::linked_list_walk;
 use crate::encode;
+use crate::gp1::Gp1;
 use crate::{Gpu, LinkedListReport, PendingInput};
 use alloc::vec::Vec;
 use core::fmt;
@@ -115,8 +116,10 @@ impl<I: Iterator<Item = u32>> ExactSizeIterator for Counted<I> {}
 
 /// GP1 words a dump carries: 00h-09h except 04h.
 fn recorded_gp1(word: u32) -> bool {
-    let command = word >> 24;
-    command <= 0x09 && command != 0x04
+    !matches!(
+        Gp1::from_word(word),
+        Gp1::DmaDirection(_) | Gp1::GetInfo(_) | Gp1::Unused(_)
+    )
 }
 
 /// GP1(03h), (05h), (06h), (07h), (09h), (08h) words restoring `gpu`'s display state
@@ -124,13 +127,23 @@ fn recorded_gp1(word: u32) -> bool {
 fn display_words(gpu: &Gpu) -> [u32; 6] {
     let d = gpu.display_state();
     [
-        0x0300_0000 | d.disabled as u32,
-        0x0500_0000 | (d.start_x as u32 & 0x3FF) | (d.start_y as u32 & 0x1FF) << 10,
-        0x0600_0000 | (d.h_range.0 as u32 & 0xFFF) | (d.h_range.1 as u32 & 0xFFF) << 12,
-        0x0700_0000 | (d.v_range.0 as u32 & 0x3FF) | (d.v_range.1 as u32 & 0x3FF) << 10,
-        0x0900_0000 | gpu.texture_disable_allowed() as u32,
-        0x0800_0000 | d.mode as u32,
+        Gp1::DisplayEnabled(!d.disabled),
+        Gp1::DisplayStart {
+            x: d.start_x,
+            y: d.start_y,
+        },
+        Gp1::HorizontalRange {
+            x1: d.h_range.0,
+            x2: d.h_range.1,
+        },
+        Gp1::VerticalRange {
+            y1: d.v_range.0,
+            y2: d.v_range.1,
+        },
+        Gp1::AllowTextureDisable(gpu.texture_disable_allowed()),
+        Gp1::DisplayMode(d.mode),
     ]
+    .map(Gp1::word)
 }
 
 impl<S: Sink> Recorder<S> {

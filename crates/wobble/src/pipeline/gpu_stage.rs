@@ -6,37 +6,33 @@
 use super::trace::{FrameRecorder, PacketOrigin};
 use crate::scene::Screen;
 use gpu::encode::{self, ENVIRONMENT_WORDS};
+use gpu::gp1::Gp1;
 use gpu::{DisplayArea, Gpu, OrderingTable};
-
-/// GP1(00h): reset the GPU.
-pub(super) const GP1_RESET: u32 = 0x0000_0000;
-/// GP1(03h) with bit 0 clear: display on.
-const GP1_DISPLAY_ON: u32 = 0x0300_0000;
 
 /// GP1(08h) for a screen `width` pixels wide: the width by bits 0-1 (256, 320, 512, 640)
 /// or bit 6 (368, also taken for any other width, which `Scene::validate` refuses), 240
 /// lines, NTSC, 15-bit colour, no interlace (docs/hardware/timing.md §4, §7).
 fn gp1_display_mode(width: u16) -> u32 {
-    let bits = match width {
+    let mode = match width {
         256 => 0,
         320 => 1,
         512 => 2,
         640 => 3,
         _ => 0x40,
     };
-    0x0800_0000 | bits
+    Gp1::DisplayMode(mode).word()
 }
 
 /// GP1(05h): display the VRAM area starting at line `y`.
-fn gp1_display_start(y: u32) -> u32 {
-    0x0500_0000 | y << 10
+fn gp1_display_start(y: u16) -> u32 {
+    Gp1::DisplayStart { x: 0, y }.word()
 }
 
 /// Turn the display on for `screen`: its width's display mode, then display enable. The
 /// display area the renderer reads out (`Renderer::image`), at the screen's size.
 pub(super) fn start_display(gpu: &mut Gpu, screen: &Screen) -> DisplayArea {
     gpu.gp1(gp1_display_mode(screen.width));
-    gpu.gp1(GP1_DISPLAY_ON);
+    gpu.gp1(Gp1::DisplayEnabled(true).word());
     DisplayArea {
         x: 0,
         y: 0,
@@ -79,7 +75,7 @@ impl FrameEnvironment {
                 ..gpu::DrawState::default()
             }),
             fill: encode::fill(screen.background, 0, y, w, h),
-            display: gp1_display_start(buffer_y),
+            display: gp1_display_start(y),
         }
     }
 

@@ -41,8 +41,9 @@ pub use trace::{
 
 use crate::scene::animation::Animation;
 use crate::scene::{Camera, InvalidScene, Scene};
+use gpu::gp1::Gp1;
 use gpu::{DisplayArea, Gpu, OrderingTable, OtError};
-use gpu_stage::{FrameEnvironment, GP1_RESET};
+use gpu_stage::FrameEnvironment;
 use gte::typed::Geometry;
 use gte_stage::{FrameInput, ProjectedFaces, Workspace, gte_stage};
 use object::PreparedObject;
@@ -115,7 +116,7 @@ impl Renderer {
         options.check().map_err(RenderError::Unsupported)?;
         scene.validate().map_err(RenderError::Scene)?;
         let mut gpu = Gpu::new();
-        gpu.gp1(GP1_RESET);
+        gpu.gp1(Gp1::Reset.word());
         gpu.set_texture_cache(options.texture_cache);
         let placements = upload::upload_textures(&mut gpu, &scene).map_err(RenderError::Vram)?;
         let objects: Vec<PreparedObject> = (0..scene.objects.len())
