@@ -267,6 +267,27 @@ impl Command {
         ((w >> 17) & 3, (w >> 15) & 3, (w >> 13) & 3)
     }
 
+    /// Whether MVMVA's operands are all stored registers: a stored matrix (mx 0-2), V0-2
+    /// (v 0-2) and TR, BK or none (cv 0, 1, 3), none of the selections with a hardware bug
+    /// or a computed operand (docs/hardware/gte.md §8). One bit test on bits 13-18 of the
+    /// word.
+    #[inline(always)]
+    pub(crate) const fn mvmva_stored_operands(self) -> bool {
+        /// Bit cv + 4v + 16mx is set when mx < 3, v < 3 and cv != 2.
+        const STORED: u64 = {
+            let mut set = 0u64;
+            let mut f = 0;
+            while f < 64 {
+                if f >> 4 != 3 && (f >> 2) & 3 != 3 && f & 3 != 2 {
+                    set |= 1 << f;
+                }
+                f += 1;
+            }
+            set
+        };
+        STORED >> ((self.0 >> 13) & 0x3F) & 1 != 0
+    }
+
     /// MVMVA matrix.
     #[inline]
     pub const fn mx(self) -> MatrixSel {

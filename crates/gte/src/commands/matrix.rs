@@ -30,8 +30,8 @@ impl Gte {
     fn mvmva_with(&mut self, c: Command, shift: u32, lm: bool) -> u32 {
         // A stored matrix, V0-2 and TR, BK or none: operands read at offsets from the
         // selector fields, without a dispatch on each.
-        let (mx, v, cv) = c.mvmva_fields();
-        if mx != 3 && v != 3 && cv != 2 {
+        if c.mvmva_stored_operands() {
+            let (mx, v, cv) = c.mvmva_fields();
             let m = self.regs.stored_matrix_wide(mx);
             let v = self.regs.v(v).map(i64::from);
             let (t, plain) = self.regs.add_vector(cv);
