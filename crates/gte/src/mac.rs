@@ -191,7 +191,8 @@ pub(crate) mod ir_test {
     /// A test per IR, the saturation in line ([`super::saturate_ir`]): steps whose IRs
     /// leave their range often, such as the light step of the normal-colour commands, whose
     /// dot products are negative for a normal facing away from a light (with lm, IR then
-    /// saturates at 0), and GPF/GPL, whose products pass the range whenever IR0 passes 1000h.
+    /// saturates at 0). GPF and GPL, whose products pass the range whenever IR0 passes
+    /// 1000h, saturate each IR the same way in their own 32-bit rows.
     pub(crate) const EACH: u8 = 1;
     /// A test per IR, the saturation out of the straight path ([`super::mac_ir`]):
     /// steps whose IRs seldom leave their range but where the grouped test measured slower

@@ -7,7 +7,7 @@
 //! IR's range on a large share of calls (GPF 7.9 → 9.1 ns with the out-of-line form).
 
 use crate::Gte;
-use crate::mac::{Step, color_entry, ir_test, is_plain_start, step_with};
+use crate::mac::{Step, bit, color_entry, ir_test, saturate_ir, step_with};
 
 /// Interpolate `input` towards the far colour `fc` (FC << 12) by `ir0` (docs/hardware/gte.md
 /// §8): first MACn = ((FCn << 12) - in_n) SAR sf with IRn saturated to the lm=0 range
@@ -109,27 +109,57 @@ impl Gte {
     /// MACn = (start_n + IRn * IR0) SAR sf, IRn by lm, and the colour pushed (GPF, GPL),
     /// start_n being MACn << sf with `FROM_MAC` (GPL) and 0 otherwise (GPF). Returns the
     /// FLAG bits.
+    ///
+    /// In 32-bit arithmetic (docs/hardware/gte.md §4): IRn * IR0 is at most 2^30 in
+    /// magnitude. With sf = 0 the sum of MACn and the product is below 2^32 in magnitude,
+    /// far inside the 44-bit range, and MACn is its low 32 bits, a wrapping addition. With
+    /// sf = 1 the sum (MACn << 12) + product leaves the 44-bit range exactly when MACn +
+    /// (product SAR 12) leaves the 32-bit range (2^43 is 2^31 << 12), and the wrapped sum
+    /// SAR 12 is that addition wrapped to 32 bits: one add, whose overflow gives the FLAG
+    /// bit without a branch (in a loop of GPL the sums leave the range on every call, in
+    /// alternate directions). The FLAG bits are a local, returned to the dispatch (docs/
+    /// performance.md, "The plain loop").
     #[inline(always)]
     fn general_interpolate<const FROM_MAC: bool>(&mut self, shift: u32, lm: bool) -> u32 {
-        let start = if FROM_MAC {
-            [1, 2, 3].map(|n| (self.regs.mac(n) as i64) << shift)
-        } else {
-            [0; 3]
-        };
-        let ir0 = self.regs.ir(0) as i64;
-        let products = self.ir_vector().map(|ir| [ir * ir0]);
-        let plain = start.iter().all(|&s| is_plain_start(s, 1));
-        // IR * IR0 leaves IR's range whenever IR0 is past 1000h with IR large, so the rows
-        // saturate one by one.
-        // The FLAG bits in a local, returned to the dispatch: GPL's sums leave the 44-bit
-        // range in a loop of the command, and flagged through a field on each addition they
-        // cost GPL 2.5 times its time (docs/performance.md, "The plain loop").
+        let ir0 = self.regs.ir(0) as i32;
         let mut flags = 0;
-        let last = step_with::<1, { ir_test::EACH }>(&mut flags, start, products, plain, shift, lm);
-        self.store_step(last);
+        // Written out row by row: `core::array::map` is not always inlined.
+        let mac = [
+            self.general_row::<FROM_MAC>(&mut flags, 1, ir0, shift, lm),
+            self.general_row::<FROM_MAC>(&mut flags, 2, ir0, shift, lm),
+            self.general_row::<FROM_MAC>(&mut flags, 3, ir0, shift, lm),
+        ];
         let code = self.regs.rgbc() & 0xFF00_0000;
-        let color = color_entry(&mut flags, last.mac, code);
+        let color = color_entry(&mut flags, mac, code);
         self.regs.push_rgb(color);
         flags
+    }
+
+    /// Row `n` of [`Gte::general_interpolate`]: MACn and IRn stored, MACn returned.
+    #[inline(always)]
+    fn general_row<const FROM_MAC: bool>(
+        &mut self,
+        flags: &mut u32,
+        n: usize,
+        ir0: i32,
+        shift: u32,
+        lm: bool,
+    ) -> i32 {
+        use core::hint::select_unpredictable as select;
+        let term = (self.regs.ir(n) as i32 * ir0) >> shift;
+        let mac = if FROM_MAC {
+            let (sum, overflow) = self.regs.mac(n).overflowing_add(term);
+            if shift != 0 {
+                let side = select(term < 0, bit::mac_negative(n), bit::mac_positive(n));
+                *flags |= side & (overflow as u32).wrapping_neg();
+            }
+            sum
+        } else {
+            term
+        };
+        self.regs.set_mac(n, mac);
+        let ir = saturate_ir(flags, n, mac, lm);
+        self.regs.set_ir(n, ir);
+        mac
     }
 }
