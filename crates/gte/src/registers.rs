@@ -477,12 +477,12 @@ impl RegisterFile {
         self.data.set(8 + n, sext(value));
     }
 
-    /// Screen X and Y of SXYn (n = 0..2), widened, from one load of the word: Y is the
-    /// sign-extended word shifted down 16, X its low half (one instruction each).
+    /// Screen X and Y of SXYn (n = 0..2), widened to 32 bits, from one load of the word: Y
+    /// is the word shifted down 16, X its low half (one instruction each).
     #[inline(always)]
-    pub(crate) fn sxy(&self, n: usize) -> (i64, i64) {
-        let w = self.data.word(12 + n) as i32 as i64;
-        (w as i16 as i64, w >> 16)
+    pub(crate) fn sxy(&self, n: usize) -> (i32, i32) {
+        let w = self.data.word(12 + n) as i32;
+        (w as i16 as i32, w >> 16)
     }
 
     /// Push a value onto the screen XY FIFO (SXY0 <- SXY1 <- SXY2 <- value).
