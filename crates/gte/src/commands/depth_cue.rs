@@ -97,7 +97,12 @@ impl Gte {
     /// GPF: MACn = (IRn * IR0) SAR sf. Returns the FLAG bits.
     #[inline(always)]
     pub(crate) fn gpf(&mut self, shift: u32, lm: bool) -> u32 {
-        self.general_interpolate::<false>(shift, lm)
+        // One copy per sf, so that the shifts are by a constant.
+        if shift == 0 {
+            self.general_interpolate::<false>(0, lm)
+        } else {
+            self.general_interpolate::<false>(12, lm)
+        }
     }
 
     /// GPL: MACn = ((MACn << sf) + IRn * IR0) SAR sf. Returns the FLAG bits.
