@@ -123,7 +123,7 @@ impl Gte {
     /// SAR 12 is that addition wrapped to 32 bits: one add, whose overflow gives the FLAG
     /// bit without a branch (in a loop of GPL the sums leave the range on every call, in
     /// alternate directions). The FLAG bits are a local, returned to the dispatch (docs/
-    /// performance.md, "The plain loop").
+    /// performance.md, "The plain loop" and "The plain loop: short paths").
     #[inline(always)]
     fn general_interpolate<const FROM_MAC: bool>(&mut self, shift: u32, lm: bool) -> u32 {
         let ir0 = self.regs.ir(0) as i32;

@@ -3,7 +3,8 @@
 //!
 //! Why this shape: MVMVA reads its operands at offsets from its selector fields rather than
 //! dispatching on each (327 → 319 instructions a call, docs/performance.md, "Where the
-//! per-call time went"), and its step's three rows are written out (`row_sums`): left as a
+//! per-call time went"), decides that they are all stored registers with one bit test (128
+//! → 116 in the plain loop, "The plain loop: short paths"), and its step's three rows are written out (`row_sums`): left as a
 //! `core::array::from_fn` call, its nine products went through the stack (17.62 → 12.54 ns,
 //! "The timed loop"). SQR uses that its squares are never negative: one compare per row
 //! ("The plain loop").
