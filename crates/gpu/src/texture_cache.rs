@@ -57,6 +57,43 @@ pub(crate) const fn tag_of(address: usize) -> u32 {
     (address >> 2) as u32
 }
 
+/// Reads worked out eight at a time ([`TextureCache::track_lanes`]).
+const LANES: usize = 8;
+
+/// Whether the reads of a span of a texture of kind `TEX` (1 = 4-bit, 2 = 8-bit, 3 =
+/// 15-bit), whose texel coordinates step by `(du, dv)` per pixel (8.24, two's complement),
+/// step slowly: a pixel moves by at most a quarter of an entry's width in U plus lines in V.
+/// An entry holds 16, 8 or 4 texels of one line (docs/hardware/gpu.md §10), so on average at
+/// most one read in four leaves the entry of the read before it, as on textures drawn at or
+/// near their size; such spans are tracked with [`TextureCache::track_slow_lanes`].
+#[inline(always)]
+pub(crate) fn steps_slowly<const TEX: u8>((du, dv): (u32, u32)) -> bool {
+    let width_log2 = match TEX {
+        1 => 4,
+        2 => 3,
+        _ => 2,
+    };
+    let (du, dv) = ((du as i32).unsigned_abs(), (dv as i32).unsigned_abs());
+    (du >> width_log2) + dv <= 1 << 22
+}
+
+/// The reads of one span whose texels step slowly ([`steps_slowly`]), tracked eight at a
+/// time ([`TextureCache::track_slow_lanes`]): made at the start of each span, so that nothing
+/// but the span's own reads touches the cache while it is in use.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SlowReads {
+    /// The tag of the span's latest read, [`INVALID`] before the first.
+    last: u32,
+}
+
+impl SlowReads {
+    /// A span before its first read.
+    #[inline(always)]
+    pub(crate) const fn new() -> Self {
+        Self { last: INVALID }
+    }
+}
+
 /// One texture cache entry as a debugger sees it (docs/hardware/gpu.md §10): the four VRAM
 /// halfwords it was loaded from and their values then, which differ from VRAM's when VRAM
 /// under the entry has been drawn or filled since.
@@ -418,6 +455,43 @@ impl TextureCache {
         self.misses = self.misses.wrapping_add(misses);
     }
 
+    /// [`TextureCache::track_lanes`] for the next reads of `span`, a span whose texels step
+    /// slowly ([`steps_slowly`]). A read with the tag of the read just before it is a hit
+    /// that changes nothing: the entry of that tag holds it since that read
+    /// (docs/hardware/gpu.md §10), and nothing but the span's reads touches the cache in
+    /// between. Only the lanes whose tag differs from the lane before them (lane 0 from the
+    /// span's latest read) are looked up.
+    #[inline(always)]
+    pub(crate) fn track_slow_lanes<const TEX: u8>(
+        &mut self,
+        address: wide::u32x8,
+        n: usize,
+        span: &mut SlowReads,
+    ) {
+        let last = &mut span.last;
+        let tags = address >> 2u32;
+        let t = tags.to_array();
+        let before = wide::u32x8::new([*last, t[0], t[1], t[2], t[3], t[4], t[5], t[6]]);
+        let valid = (1u32 << n.min(LANES)) - 1;
+        let mut changed = !tags.simd_eq(before).to_bitmask() & valid;
+        if n > 0 {
+            *last = t[(n - 1) & (LANES - 1)];
+        }
+        if changed == 0 {
+            return;
+        }
+        let entry = entry_index_lanes::<TEX>(address).to_array();
+        let mut misses = 0;
+        while changed != 0 {
+            let k = changed.trailing_zeros() as usize & (LANES - 1);
+            let slot = &mut self.tags[entry[k] as usize & (ENTRIES - 1)];
+            misses += u32::from(*slot != t[k]);
+            *slot = t[k];
+            changed &= changed - 1;
+        }
+        self.misses = self.misses.wrapping_add(misses);
+    }
+
     /// Entry `index`: where its halfwords came from and their values (from `vram` while the
     /// copies are not kept, when they are the same); `None` when it holds nothing.
     pub(crate) fn entry(&self, index: u8, vram: &[u16; VRAM_LEN]) -> Option<TextureCacheEntry> {
@@ -614,23 +688,36 @@ mod tests {
         }
     }
 
-    /// Eight reads at a time leave the misses and tags of the same reads made one by one:
-    /// runs of reads in one entry, jumps between entries, the same entry number in another
-    /// block, and partial groups.
+    /// Eight reads at a time leave the misses and tags of the same reads made one by one,
+    /// whether the span is taken as stepping slowly or not: runs of reads in one entry,
+    /// jumps between entries, the same entry number in another block, partial groups, and
+    /// spans after spans on a cache left as the one before left it.
     #[test]
     fn lanes_track_as_reads_one_by_one() {
         fn check<const TEX: u8>(reads: &[u32]) {
-            let (mut lanes, mut one) = (TextureCache::default(), TextureCache::default());
-            for group in reads.chunks(8) {
-                let mut a = [0u32; 8];
-                a[..group.len()].copy_from_slice(group);
-                lanes.track_lanes::<TEX>(wide::u32x8::new(a), group.len());
-                for &address in group {
-                    one.track::<TEX>(address as usize);
+            for slow in [false, true] {
+                let (mut lanes, mut one) = (TextureCache::default(), TextureCache::default());
+                // The reads as two spans, the second starting where the first left the cache.
+                let (first, second) = reads.split_at(reads.len() / 2);
+                for span in [first, second] {
+                    let mut reads = SlowReads::new();
+                    for group in span.chunks(8) {
+                        let mut a = [0u32; 8];
+                        a[..group.len()].copy_from_slice(group);
+                        let a = wide::u32x8::new(a);
+                        if slow {
+                            lanes.track_slow_lanes::<TEX>(a, group.len(), &mut reads);
+                        } else {
+                            lanes.track_lanes::<TEX>(a, group.len());
+                        }
+                        for &address in group {
+                            one.track::<TEX>(address as usize);
+                        }
+                    }
                 }
+                assert_eq!(lanes.tags, one.tags, "slow {slow}");
+                assert_eq!(lanes.take_misses(), one.take_misses(), "slow {slow}");
             }
-            assert_eq!(lanes.tags, one.tags);
-            assert_eq!(lanes.take_misses(), one.take_misses());
         }
         // A 15-bit row stepping one halfword a pixel, then back over the same entries.
         let row: alloc::vec::Vec<u32> =
@@ -645,7 +732,10 @@ mod tests {
                 (x >> 8) & if x & 1 == 0 { 0x7_C0FF } else { 0x7_FFFF }
             })
             .collect();
-        for reads in [&row, &column, &scattered] {
+        // A 4-bit row at a quarter texel a pixel: many reads of each halfword, then the
+        // same entries again from the block to the right.
+        let slow: alloc::vec::Vec<u32> = (0..300).map(|k| 9 * 1024 + 60 + k / 16).collect();
+        for reads in [&row, &column, &scattered, &slow] {
             check::<1>(reads);
             check::<2>(reads);
             check::<3>(reads);
@@ -655,6 +745,29 @@ mod tests {
                 check::<3>(&reads[..n]);
             }
         }
+    }
+
+    /// A span steps slowly when a pixel moves at most a quarter of an entry: 4, 2 or 1
+    /// texels in U (4-bit, 8-bit, 15-bit) or a quarter of a line in V, or a mix of the two;
+    /// either direction.
+    #[test]
+    fn spans_step_slowly_up_to_a_quarter_entry() {
+        let texel = 1u32 << 24;
+        let slow = |tex: u8, du: u32, dv: u32| match tex {
+            1 => steps_slowly::<1>((du, dv)),
+            2 => steps_slowly::<2>((du, dv)),
+            _ => steps_slowly::<3>((du, dv)),
+        };
+        for (tex, quarter) in [(1, 4), (2, 2), (3, 1)] {
+            assert!(slow(tex, quarter * texel, 0));
+            assert!(slow(tex, (quarter * texel).wrapping_neg(), 0));
+            assert!(!slow(tex, quarter * texel + (1 << 4), 0));
+            assert!(slow(tex, quarter * texel / 2, texel / 8));
+            assert!(!slow(tex, quarter * texel / 2, texel / 8 + 1));
+        }
+        assert!(slow(3, 0, texel / 4));
+        assert!(!slow(3, 0, (texel / 4 + 1).wrapping_neg()));
+        assert!(!slow(1, u32::MAX / 2, 0));
     }
 
     #[test]

@@ -538,3 +538,140 @@ proptest! {
         prop_assert_eq!(g.texture_cache_misses() - start, misses);
     }
 }
+
+/// A textured triangle of [`triangles_track_reads_as_pixel_by_pixel`]: its kind (0 flat
+/// 4-bit, 1 flat dithered 4-bit, 2 Gouraud 4-bit, 3 Gouraud 8-bit, 4 Gouraud 15-bit, 5 raw
+/// 15-bit), vertices and texel coordinates.
+#[derive(Clone, Debug)]
+struct Textured {
+    kind: u32,
+    at: [(u32, u32); 3],
+    uv: [(u32, u32); 3],
+}
+
+/// Triangles in lines 400-507 that step through their texels at or near their size (a
+/// vertex's U and V follow its position, scaled by a quarter to two) or, one time in four,
+/// anywhere in the page.
+fn textured(kind: u32) -> impl Strategy<Value = Textured> {
+    let corner = (0u32..400, 400u32..508);
+    let scale = prop_oneof![Just(1u32), Just(2), Just(4), Just(8)];
+    (
+        [corner.clone(), corner.clone(), corner],
+        (0u32..256, 0u32..256),
+        scale,
+        prop::bool::weighted(0.25),
+        [(0u32..256, 0u32..256), (0u32..256, 0u32..256)],
+    )
+        .prop_map(move |(at, (u0, v0), scale, anywhere, far)| {
+            // U and V move by `scale / 4` texels a pixel from vertex 0, kept in the page.
+            let near = |(x, y): (u32, u32)| {
+                let du = (x as i32 - at[0].0 as i32) * scale as i32 / 4;
+                let dv = (y as i32 - at[0].1 as i32) * scale as i32 / 4;
+                (
+                    (u0 as i32 + du).clamp(0, 255) as u32,
+                    (v0 as i32 + dv).clamp(0, 255) as u32,
+                )
+            };
+            let uv = if anywhere {
+                [(u0, v0), far[0], far[1]]
+            } else {
+                [(u0, v0), near(at[1]), near(at[2])]
+            };
+            Textured { kind, at, uv }
+        })
+}
+
+/// Draw `t` with its texture page attribute naming the page at `PAGE_X` (CLUT at (0, 511)).
+fn draw_textured(g: &mut Gpu, t: &Textured) {
+    let depth = match t.kind {
+        0..=2 => 0,
+        3 => 1,
+        _ => 2,
+    };
+    let texpage = (PAGE_X / 64) | (depth << 7);
+    let clut = 511 << 6;
+    let [a, b, c] = t.at;
+    let [ua, ub, uc] = t.uv.map(|(u, v)| v << 8 | u);
+    if t.kind == 1 {
+        g.gp0(0xE100_0200 | texpage);
+    }
+    match t.kind {
+        0 | 1 | 5 => {
+            let cmd = if t.kind == 5 {
+                0x2500_0000
+            } else {
+                0x2400_0000
+            };
+            g.gp0_words(&[
+                cmd | 0x60_7080,
+                xy(a.0, a.1),
+                clut << 16 | ua,
+                xy(b.0, b.1),
+                texpage << 16 | ub,
+                xy(c.0, c.1),
+                uc,
+            ]);
+        }
+        _ => g.gp0_words(&[
+            0x3400_4080,
+            xy(a.0, a.1),
+            clut << 16 | ua,
+            0x0080_6040,
+            xy(b.0, b.1),
+            texpage << 16 | ub,
+            0x0020_C0A0,
+            xy(c.0, c.1),
+            uc,
+        ]),
+    }
+    if t.kind == 1 {
+        g.gp0(0xE100_0000 | texpage);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Textured triangles of every span routine that tracks its reads eight at a time (the
+    /// eight-pixel groups at 4, 8 and 15-bit, the shaded and dithered 4-bit CLUT spans, raw
+    /// 15-bit), mostly stepping through their texels slowly, leave the misses, the 256
+    /// entries and the pixels of the same triangles drawn where the drawing area covers the
+    /// page too, which keeps the entries' copies and reads them pixel by pixel, one read at
+    /// a time (docs/gpu.md, "Texture cache").
+    #[test]
+    fn triangles_track_reads_as_pixel_by_pixel(
+        tris in (0u32..6).prop_flat_map(|kind| prop::collection::vec(textured(kind), 1..5)),
+    ) {
+        let (mut lanes, mut one) = (gpu(false), gpu(true));
+        for g in [&mut lanes, &mut one] {
+            // Texels 1-255 of a diagonal ramp, so that 4-bit and 8-bit texels vary, and a
+            // CLUT of non-zero colours.
+            for y in 0..256u32 {
+                let words: Vec<u32> = (0..128u32)
+                    .map(|x| {
+                        let t = |x: u32| (x + y) % 255 + 1;
+                        t(2 * x) | t(2 * x + 1) << 16
+                    })
+                    .collect();
+                g.gp0_words(&[0xA000_0000, xy(PAGE_X, y), xy(256, 1)]);
+                g.gp0_words(&words);
+            }
+            let clut: Vec<u32> = (0..128u32).map(|i| (0x0421 * (2 * i % 31 + 1)) | (0x0421 * ((2 * i + 1) % 31 + 1)) << 16).collect();
+            g.gp0_words(&[0xA000_0000, xy(0, 511), xy(256, 1)]);
+            g.gp0_words(&clut);
+        }
+        let start = (lanes.texture_cache_misses(), one.texture_cache_misses());
+        for t in &tris {
+            draw_textured(&mut lanes, t);
+            draw_textured(&mut one, t);
+        }
+        prop_assert_eq!(
+            lanes.texture_cache_misses() - start.0,
+            one.texture_cache_misses() - start.1
+        );
+        for i in 0..=255u8 {
+            prop_assert_eq!(lanes.texture_cache_entry(i), one.texture_cache_entry(i), "entry {}", i);
+        }
+        prop_assert!(lanes.vram().as_slice() == one.vram().as_slice());
+    }
+}

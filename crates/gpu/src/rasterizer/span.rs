@@ -14,7 +14,7 @@ use super::PixelEnv;
 use crate::VRAM_LEN;
 use crate::color::DITHER_MATRIX;
 use crate::texture::texture_halfword;
-use crate::texture_cache::{TextureCache, mode};
+use crate::texture_cache::{SlowReads, TextureCache, mode, steps_slowly};
 use wide::bytemuck::cast;
 use wide::{i16x8, i32x8, u16x8, u32x8};
 
@@ -50,15 +50,18 @@ const fn dither_lanes() -> [[[i16; LANES]; 4]; 4] {
 pub(super) struct LaneSteps {
     offset: [u32x8; 5],
     group: [u32x8; 5],
+    /// The texels step slowly ([`steps_slowly`]).
+    slow: bool,
 }
 
 impl LaneSteps {
-    /// Lane offsets for the per-pixel steps `step`.
+    /// Lane offsets for the per-pixel steps `step`, over a texture of kind `TEX`.
     #[inline(always)]
-    pub(super) fn new(step: [u32; 5]) -> Self {
+    pub(super) fn new<const TEX: u8>(step: [u32; 5]) -> Self {
         Self {
             offset: step.map(|s| u32x8::new(core::array::from_fn(|k| s.wrapping_mul(k as u32)))),
             group: step.map(|s| u32x8::splat(s.wrapping_mul(LANES as u32))),
+            slow: TEX != super::TEX_NONE && steps_slowly::<TEX>((step[3], step[4])),
         }
     }
 }
@@ -83,7 +86,8 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// untextured one its first and last four, two or one, a textured one pixel by pixel.
 /// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
 /// wrapping ([`plain_page`]), so the eight texel addresses are computed together. `CACHE`:
-/// texels are read through the texture cache (docs/hardware/gpu.md §10).
+/// texels are read through the texture cache (docs/hardware/gpu.md §10), the reads of a span
+/// whose texels step slowly ([`steps_slowly`]) looked up only where they leave an entry.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn draw<
@@ -104,6 +108,36 @@ pub(super) fn draw<
     env: &PixelEnv,
     cache: &mut TextureCache,
 ) {
+    let span = (row, y, x_start, x_end);
+    if TEX != super::TEX_NONE && PLAIN && CACHE == mode::TAGS && steps.slow {
+        groups::<TEX, GOURAUD, DITHER, PLAIN, CACHE, true>(
+            vram, span, acc, steps, flat, env, cache,
+        );
+    } else {
+        groups::<TEX, GOURAUD, DITHER, PLAIN, CACHE, false>(
+            vram, span, acc, steps, flat, env, cache,
+        );
+    }
+}
+
+/// [`draw`], with the reads of a span whose texels step slowly tracked as such when `SLOW`.
+#[inline(always)]
+fn groups<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const DITHER: bool,
+    const PLAIN: bool,
+    const CACHE: u8,
+    const SLOW: bool,
+>(
+    vram: &mut [u16; VRAM_LEN],
+    (row, y, x_start, x_end): (usize, i32, i32, i32),
+    acc: [u32; 5],
+    steps: &LaneSteps,
+    flat: [i32; 3],
+    env: &PixelEnv,
+    cache: &mut TextureCache,
+) {
     let textured = TEX != super::TEX_NONE;
     let mask_or = i16x8::splat(env.mask_or as i16);
     let flat = flat.map(|c| i16x8::splat(c as i16));
@@ -114,9 +148,15 @@ pub(super) fn draw<
     } else {
         i16x8::ZERO
     };
+    let mut reads = SlowReads::new();
     let mut group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
-        Group::<TEX, GOURAUD, PLAIN, CACHE>::shade(
-            vram, cache, env, flat, mask_or, dither, lanes, n,
+        Group::<TEX, GOURAUD, PLAIN, CACHE, SLOW>::shade(
+            vram,
+            (&mut *cache, &mut reads),
+            env,
+            (flat, mask_or, dither),
+            lanes,
+            n,
         )
     };
     let put = put::<TEX>;
@@ -151,23 +191,28 @@ pub(super) fn draw<
     }
 }
 
-/// One group of eight pixels of a span; `PLAIN` and `CACHE` as for [`draw`].
-struct Group<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>;
+/// One group of eight pixels of a span; `PLAIN` and `CACHE` as for [`draw`], `SLOW` as for
+/// [`groups`].
+struct Group<
+    const TEX: u8,
+    const GOURAUD: bool,
+    const PLAIN: bool,
+    const CACHE: u8,
+    const SLOW: bool,
+>;
 
-impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>
-    Group<TEX, GOURAUD, PLAIN, CACHE>
+impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, const SLOW: bool>
+    Group<TEX, GOURAUD, PLAIN, CACHE, SLOW>
 {
     /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
     /// their values and their texels (0 past the first `n`, which are not fetched).
+    /// The reads of a span whose texels step slowly tracked through `reads` when `SLOW`.
     #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
     fn shade(
         vram: &[u16; VRAM_LEN],
-        cache: &mut TextureCache,
+        (cache, reads): (&mut TextureCache, &mut SlowReads),
         env: &PixelEnv,
-        flat: [i16x8; 3],
-        mask_or: i16x8,
-        dither: i16x8,
+        (flat, mask_or, dither): ([i16x8; 3], i16x8, i16x8),
         lanes: &[u32x8; 5],
         n: usize,
     ) -> (u16x8, i16x8, [u16; LANES]) {
@@ -194,7 +239,11 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8>
             // too (docs/hardware/gpu.md §10).
             let tags = CACHE == mode::TAGS;
             if tags {
-                cache.track_lanes::<TEX>(address, n);
+                if SLOW {
+                    cache.track_slow_lanes::<TEX>(address, n, reads);
+                } else {
+                    cache.track_lanes::<TEX>(address, n);
+                }
             }
             let (address, shift) = (address.to_array(), shift.to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {

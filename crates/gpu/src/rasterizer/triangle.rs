@@ -9,8 +9,8 @@ use crate::primitive::Triangle;
 use crate::state::BlendMode;
 use crate::state::DrawState;
 use crate::texture::texture_halfword;
-use crate::texture_cache::TextureCache;
 use crate::texture_cache::mode::{self, COPIES};
+use crate::texture_cache::{SlowReads, TextureCache, steps_slowly};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
 /// `$body` with `$mode` bound to the blend mode `$value`: when `$blend` (a const parameter)
@@ -449,10 +449,10 @@ impl PartRows {
     }
 
     /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
-    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel;
-    /// returns what was drawn.
+    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel, slowly
+    /// (`steps_slowly`) when `SLOW`; returns what was drawn.
     #[inline(never)]
-    fn raw15<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
+    fn raw15<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
         self,
         vram: &mut [u16; VRAM_LEN],
         duv: (u32, u32),
@@ -469,7 +469,7 @@ impl PartRows {
                 (row, x_start, x_end),
                 uv,
                 duv,
-                (page, &mut *cache),
+                (page, &mut *cache, SLOW),
                 mask,
             );
         })
@@ -511,7 +511,8 @@ impl PartRows {
     }
 
     /// Draw the spans one by one ([`span_pixels`]), the attributes stepping by `step` per
-    /// pixel, with the span routines `plan` chose; returns what was drawn.
+    /// pixel, slowly for the texels (`steps_slowly`) when `SLOW`, with the span routines
+    /// `plan` chose; returns what was drawn.
     #[inline(never)]
     fn spans<
         const TEX: u8,
@@ -521,6 +522,7 @@ impl PartRows {
         const DITHER: bool,
         const MASK_CHECK: bool,
         const CACHE: u8,
+        const SLOW: bool,
     >(
         self,
         vram: &mut [u16; VRAM_LEN],
@@ -539,7 +541,7 @@ impl PartRows {
                 (acc, step),
                 flat,
                 (plan, env),
-                cache,
+                (cache, SLOW),
             );
         })
     }
@@ -575,7 +577,7 @@ impl PartRows {
             mut attr,
             attr_step,
         } = self;
-        let lanes = &span::LaneSteps::new(step);
+        let lanes = &span::LaneSteps::new::<TEX>(step);
         let mut pixels = 0;
         while y != end {
             let (mut x_start, mut x_end) = ((l >> 32) as i32, (r >> 32) as i32);
@@ -710,6 +712,7 @@ pub(super) fn draw_inline<
         &env,
         &v,
         (clip_rows.0, clip_rows.1, clip.0, clip.1),
+        (step[3], step[4]),
     );
     // Rows are independent, so they are walked top-down, except where a texel read can
     // change what a later one sees: through the texture cache, in the console's order (§3.4).
@@ -731,22 +734,32 @@ pub(super) fn draw_inline<
             drawn.pixels += pixels;
             continue;
         }
-        let d = match plan.raw15_page {
-            Some(page) => {
-                let mask = (env.mask_or, env.blend);
-                walk.raw15::<BLEND, MASK_CHECK, CACHE>(
-                    vram,
-                    (step[3], step[4]),
-                    (page, cache),
-                    mask,
-                )
+        // Each read mode of a span has a row walk of its own, so that its pixel loop is the
+        // only one there.
+        let slow = CACHE == mode::TAGS && plan.slow_reads;
+        let d = match (plan.raw15_page, slow) {
+            (Some(page), slow) => {
+                let (duv, mask) = ((step[3], step[4]), (env.mask_or, env.blend));
+                if slow {
+                    walk.raw15::<BLEND, MASK_CHECK, CACHE, true>(vram, duv, (page, cache), mask)
+                } else {
+                    walk.raw15::<BLEND, MASK_CHECK, CACHE, false>(vram, duv, (page, cache), mask)
+                }
             }
-            None => walk.spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
-                vram,
-                (step, flat),
-                (&plan, &env),
-                cache,
-            ),
+            (None, true) => walk
+                .spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE, true>(
+                    vram,
+                    (step, flat),
+                    (&plan, &env),
+                    cache,
+                ),
+            (None, false) => walk
+                .spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE, false>(
+                    vram,
+                    (step, flat),
+                    (&plan, &env),
+                    cache,
+                ),
         };
         (drawn.pixels, drawn.pairs) = (drawn.pixels + d.pixels, drawn.pairs + d.pairs);
     }
@@ -850,11 +863,14 @@ struct SpanPlan<'a> {
     plain_page: Option<usize>,
     /// A raw 15-bit page the window and VRAM wraps leave alone.
     raw15_page: Option<usize>,
+    /// The texels step slowly (`steps_slowly`).
+    slow_reads: bool,
 }
 
 impl<'a> SpanPlan<'a> {
     /// The plan for the sorted vertices `v` clipped to rows `top..bottom` and columns
-    /// `left..right`, under the pipeline of the const parameters.
+    /// `left..right`, U and V stepping by `duv` per pixel, under the pipeline of the const
+    /// parameters.
     #[inline(always)]
     fn new<
         const TEX: u8,
@@ -868,6 +884,7 @@ impl<'a> SpanPlan<'a> {
         env: &PixelEnv<'a>,
         v: &[Vtx; 3],
         (top, bottom, left, right): (i32, i32, i32, i32),
+        duv: (u32, u32),
     ) -> Self {
         let (a, b, c) = (v[0], v[1], v[2]);
         // Opaque, unmasked spans whose pixels each need their own colour or texel go eight
@@ -919,13 +936,15 @@ impl<'a> SpanPlan<'a> {
             dithered,
             plain_page,
             raw15_page,
+            slow_reads: TEX != TEX_NONE && steps_slowly::<TEX>(duv),
         }
     }
 }
 
 /// The span `[x_start, x_end)` of line `y` (VRAM row offset `row`), its attributes at
 /// `x_start` and their steps `(acc, step)`, with one copy of the pixel loop per table kind,
-/// chosen per span by `plan`; texels read in the texture cache mode `CACHE`.
+/// chosen per span by `plan`; texels read in the texture cache mode `CACHE`, through `cache`,
+/// the reads of texels that step slowly (`steps_slowly`) tracked as such when `slow`.
 #[inline(always)]
 fn span_pixels<
     const TEX: u8,
@@ -941,7 +960,7 @@ fn span_pixels<
     (acc, step): ([u32; 5], [u32; 5]),
     flat: [i32; 3],
     (plan, env): (&SpanPlan, &PixelEnv),
-    cache: &mut TextureCache,
+    (cache, slow): (&mut TextureCache, bool),
 ) {
     let (row, y, x_start, x_end) = span;
     let (uv, duv, mask) = (
@@ -956,7 +975,7 @@ fn span_pixels<
             (row, x_start, x_end),
             uv,
             duv,
-            (page, cache),
+            (page, cache, slow),
             (&c[line], &env.lut),
             mask,
         ),
@@ -966,7 +985,7 @@ fn span_pixels<
                 (row, x_start, x_end),
                 uv,
                 duv,
-                (page, cache),
+                (page, cache, slow),
                 (&NO_CELLS, &env.lut),
                 mask,
             )
@@ -1060,14 +1079,15 @@ static NO_CELLS: [[u32; 16]; 4] = [[0; 16]; 4];
 /// four (`CELLS`, [`super::dithered_clut4`]) or the one undithered table
 /// ([`super::shaded_clut4`]); the texel index is read from the halfword
 /// `page + v * 1024 + u / 4`, through the texture cache when `CACHE` (§10). U and V start at
-/// `uv` and step by `duv` (8.24).
+/// `uv` and step by `duv` (8.24); `page` is the page's VRAM index, the cache, and whether the
+/// texels step slowly (`steps_slowly`).
 #[inline(always)]
 fn clut4_span<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     span: (usize, i32, i32),
     uv: (u32, u32),
     duv: (u32, u32),
-    page: (usize, &mut TextureCache),
+    page: (usize, &mut TextureCache, bool),
     tables: (&[[u32; 16]; 4], &[u32; 16]),
     (mask_or, blend): (u16, BlendMode),
 ) {
@@ -1085,39 +1105,30 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
-    (page, cache): (usize, &mut TextureCache),
+    (page, cache, slow): (usize, &mut TextureCache, bool),
     (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
     (mask_or, blend): (u16, BlendMode),
 ) {
-    // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
-    let cells = cells.as_flattened();
-    let mut cell = ((x_start & 3) as usize) << 4;
     if CACHE == mode::TAGS {
-        // With the tags tracked, eight pixels' reads are worked out at a time.
-        let steps = span::PlainReads::steps((du, dv));
-        let mut x = x_start;
-        while x < x_end {
-            let r = span::PlainReads::new::<1>(page, (u, v), &steps);
-            let n = ((x_end - x) as usize).min(8);
-            cache.track_lanes::<1>(r.lanes, n);
-            for k in 0..n {
-                let word = vram[r.address[k] as usize & (VRAM_LEN - 1)];
-                let texel = usize::from((word >> r.shift[k]) & 0xF);
-                let e = if CELLS {
-                    cells[(cell | texel) & 63]
-                } else {
-                    lut[texel]
-                };
-                let at = row + x as usize + k;
-                super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
-                cell = (cell + 16) & 48;
-            }
-            u = u.wrapping_add(du.wrapping_mul(8));
-            v = v.wrapping_add(dv.wrapping_mul(8));
-            x += 8;
+        // With the tags tracked, eight pixels' reads are worked out at a time, those of a span
+        // whose texels step slowly looked up only where they leave an entry.
+        let span = ((row, x_start, x_end), (u, v), (du, dv), page);
+        let (tables, mask) = ((cells, lut), (mask_or, blend));
+        if slow {
+            let mut reads = SlowReads::new();
+            clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
+                cache.track_slow_lanes::<1>(a, n, &mut reads);
+            });
+        } else {
+            clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
+                cache.track_lanes::<1>(a, n);
+            });
         }
         return;
     }
+    // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
+    let cells = cells.as_flattened();
+    let mut cell = ((x_start & 3) as usize) << 4;
     for x in x_start..x_end {
         let (tu, tv) = ((u >> 24) as usize, (v >> 24) as usize);
         let word = texture_halfword::<1, CACHE>(vram, cache, page + tv * VRAM_WIDTH + (tu >> 2));
@@ -1134,18 +1145,61 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
     }
 }
 
+/// [`clut4_pixels`] with the tags tracked: eight pixels' texel reads worked out at a time and
+/// handed to `track` (their halfwords' addresses in lanes, and how many of the eight are
+/// read) before they are read.
+#[inline(always)]
+fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    ((row, x_start, x_end), (mut u, mut v), (du, dv), page): SlowSpan,
+    (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
+    (mask_or, blend): (u16, BlendMode),
+    mut track: impl FnMut(wide::u32x8, usize),
+) {
+    // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
+    let cells = cells.as_flattened();
+    let mut cell = ((x_start & 3) as usize) << 4;
+    let steps = span::PlainReads::steps((du, dv));
+    let mut x = x_start;
+    while x < x_end {
+        let r = span::PlainReads::new::<1>(page, (u, v), &steps);
+        let n = ((x_end - x) as usize).min(8);
+        track(r.lanes, n);
+        for k in 0..n {
+            let word = vram[r.address[k] as usize & (VRAM_LEN - 1)];
+            let texel = usize::from((word >> r.shift[k]) & 0xF);
+            let e = if CELLS {
+                cells[(cell | texel) & 63]
+            } else {
+                lut[texel]
+            };
+            let at = row + x as usize + k;
+            super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
+            cell = (cell + 16) & 48;
+        }
+        u = u.wrapping_add(du.wrapping_mul(8));
+        v = v.wrapping_add(dv.wrapping_mul(8));
+        x += 8;
+    }
+}
+
+/// A span of [`clut4_groups`] or [`raw15_groups`]: its row offset and columns, U and V at its
+/// first pixel and their steps per pixel (8.24), and the page's VRAM index.
+type SlowSpan = ((usize, i32, i32), (u32, u32), (u32, u32), usize);
+
 /// Write `[x_start, x_end)` of the VRAM line at `row` from a raw 15-bit texture under the
 /// identity window whose page lies inside VRAM (docs/hardware/gpu.md §6, §7): each pixel is
 /// its texel, the halfword `page + v * 1024 + u` (through the texture cache when `CACHE`,
 /// §10), unmodulated; a texel of 0000h leaves the pixel as it is, and bit 15 of the others
-/// selects blending. U and V start at `uv` and step by `duv` (8.24).
+/// selects blending. U and V start at `uv` and step by `duv` (8.24); `page` is the page's
+/// VRAM index, the cache, and whether the texels step slowly (`steps_slowly`).
 #[inline(always)]
 fn raw15_span<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
     vram: &mut [u16; VRAM_LEN],
     span: (usize, i32, i32),
     uv: (u32, u32),
     duv: (u32, u32),
-    page: (usize, &mut TextureCache),
+    page: (usize, &mut TextureCache, bool),
     (mask_or, blend): (u16, BlendMode),
 ) {
     with_blend_mode!(BLEND, blend, mode => {
@@ -1160,30 +1214,22 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
     (row, x_start, x_end): (usize, i32, i32),
     (mut u, mut v): (u32, u32),
     (du, dv): (u32, u32),
-    (page, cache): (usize, &mut TextureCache),
+    (page, cache, slow): (usize, &mut TextureCache, bool),
     (mask_or, blend): (u16, BlendMode),
 ) {
     if CACHE == mode::TAGS {
-        // With the tags tracked, eight pixels' reads are worked out at a time.
-        let steps = span::PlainReads::steps((du, dv));
-        let mut x = x_start;
-        while x < x_end {
-            let r = span::PlainReads::new::<3>(page, (u, v), &steps);
-            let n = ((x_end - x) as usize).min(8);
-            cache.track_lanes::<3>(r.lanes, n);
-            for k in 0..n {
-                let texel = vram[r.address[k] as usize & (VRAM_LEN - 1)];
-                let e = if texel == 0 {
-                    0
-                } else {
-                    0x1_0000 | u32::from(texel)
-                };
-                let at = row + x as usize + k;
-                super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
-            }
-            u = u.wrapping_add(du.wrapping_mul(8));
-            v = v.wrapping_add(dv.wrapping_mul(8));
-            x += 8;
+        // With the tags tracked, eight pixels' reads are worked out at a time, those of a span
+        // whose texels step slowly looked up only where they leave an entry.
+        let span = ((row, x_start, x_end), (u, v), (du, dv), page);
+        if slow {
+            let mut reads = SlowReads::new();
+            raw15_groups::<BLEND, MASK_CHECK>(vram, span, (mask_or, blend), move |a, n| {
+                cache.track_slow_lanes::<3>(a, n, &mut reads);
+            });
+        } else {
+            raw15_groups::<BLEND, MASK_CHECK>(vram, span, (mask_or, blend), move |a, n| {
+                cache.track_lanes::<3>(a, n);
+            });
         }
         return;
     }
@@ -1198,6 +1244,38 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
         super::write_shaded::<BLEND, MASK_CHECK>(vram, row + x as usize, e, mask_or, blend);
         u = u.wrapping_add(du);
         v = v.wrapping_add(dv);
+    }
+}
+
+/// [`raw15_pixels`] with the tags tracked: eight pixels' texel reads worked out at a time and
+/// handed to `track` (their halfwords' addresses in lanes, and how many of the eight are
+/// read) before they are read.
+#[inline(always)]
+fn raw15_groups<const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    ((row, x_start, x_end), (mut u, mut v), (du, dv), page): SlowSpan,
+    (mask_or, blend): (u16, BlendMode),
+    mut track: impl FnMut(wide::u32x8, usize),
+) {
+    let steps = span::PlainReads::steps((du, dv));
+    let mut x = x_start;
+    while x < x_end {
+        let r = span::PlainReads::new::<3>(page, (u, v), &steps);
+        let n = ((x_end - x) as usize).min(8);
+        track(r.lanes, n);
+        for k in 0..n {
+            let texel = vram[r.address[k] as usize & (VRAM_LEN - 1)];
+            let e = if texel == 0 {
+                0
+            } else {
+                0x1_0000 | u32::from(texel)
+            };
+            let at = row + x as usize + k;
+            super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
+        }
+        u = u.wrapping_add(du.wrapping_mul(8));
+        v = v.wrapping_add(dv.wrapping_mul(8));
+        x += 8;
     }
 }
 
