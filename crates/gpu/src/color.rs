@@ -161,25 +161,21 @@ pub(crate) type DitheredCells = [[[u32; 16]; 4]; 4];
 /// `shade_pixel` computes per texel, per entry instead. Raw textures keep the entry as it
 /// is; a shaded entry is coded `1_0000h | colour | bit 15`, a transparent one 0.
 pub(crate) fn shaded_clut4(clut: &[u16; 256], rgb: [i32; 3], raw: bool) -> [u32; 16] {
-    let mut lut = [0u32; 16];
-    for (entry, &t) in lut.iter_mut().zip(clut.iter()) {
-        if t == 0 {
-            continue;
-        }
+    // The channels of a command colour are 0..=255, so (t5 * c8) >> 4 is at most 494 and
+    // the undithered table's `min(i, 255) >> 3` is worked out: no lookup, so the 16 entries
+    // are shaded side by side.
+    let rgb = rgb.map(|c| c.clamp(0, 255) as u32);
+    let c5 = |t: u32, c: u32| (((t & 0x1F) * c) >> 4).min(255) >> 3;
+    core::array::from_fn(|i| {
+        let t = u32::from(clut[i]);
         let shaded = if raw {
             t & 0x7FFF
         } else {
-            let c5 = |i: i32| PLAIN_TABLE[(i & 511) as usize] as u16;
-            let t = t as i32;
-            pack555(
-                c5(((t & 0x1F) * rgb[0]) >> 4),
-                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
-                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
-            )
+            c5(t, rgb[0]) | c5(t >> 5, rgb[1]) << 5 | c5(t >> 10, rgb[2]) << 10
         };
-        *entry = 0x1_0000 | u32::from(shaded | (t & 0x8000));
-    }
-    lut
+        let entry = 0x1_0000 | shaded | (t & 0x8000);
+        if t == 0 { 0 } else { entry }
+    })
 }
 
 /// The 16 CLUT entries of a 4-bit texture modulated by one colour `rgb` and dithered, for

@@ -394,6 +394,39 @@ fn with_the_cache_off_a_primitive_reads_its_own_pixels() {
     }
 }
 
+/// A sprite drawn over its own 8-bit texels with the cache off: a raw 16x16 sprite (GP0(7Dh))
+/// at (0, y) on the page at (0, 0), CLUT at (0, 256). Pixel i of a row reads texel i, the
+/// byte i & 1 of halfword i / 2, straight from VRAM, after pixels 0..i have been written, so
+/// from pixel 1 on it reads bytes the sprite itself wrote (§7, §10). The expected row is
+/// worked out pixel by pixel in that order from the CLUT and the VRAM before the draw.
+#[test]
+fn with_the_cache_off_a_sprite_reads_its_own_pixels() {
+    let mut g = gpu(true);
+    g.set_texture_cache(false);
+    g.gp0(0xE100_0080);
+    let clut = |i: u16| 0x0400 | (i * 3 + 1);
+    for i in 0..256u16 {
+        g.vram_mut().set_pixel(usize::from(i), 256, clut(i));
+    }
+    let before = |x: usize, y: usize| (x as u16 * 0x0101 + y as u16 * 0x3B) | 0x0100;
+    for y in 0..16 {
+        for x in 0..16 {
+            g.vram_mut().set_pixel(x, y, before(x, y));
+        }
+    }
+    g.gp0_words(&[0x7D00_0000, xy(0, 0), 0x4000 << 16]);
+    for y in 0..16 {
+        let mut row: Vec<u16> = (0..16).map(|x| before(x, y)).collect();
+        for i in 0..16 {
+            let byte = row[i / 2] >> (8 * (i & 1)) & 0xFF;
+            row[i] = clut(byte);
+        }
+        for (x, &expected) in row.iter().enumerate() {
+            assert_eq!(g.vram().pixel(x, y), expected, "({x}, {y})");
+        }
+    }
+}
+
 /// A triangle whose core vertex sorts last is walked upward, both parts (§3.4): the entry two
 /// of its rows share ends up holding the upper row's halfwords. Raw 15-bit, vertices (100,
 /// 400), (100, 420), (36, 464) reading u = x - 36, v = y - 400 (the core vertex is the third:

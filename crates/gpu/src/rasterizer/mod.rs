@@ -160,47 +160,68 @@ pub(crate) fn shade_pixel<
     lut: Option<&[u32; 16]>,
     cache: &mut TextureCache,
 ) {
-    let dst = vram[index & (VRAM_LEN - 1)];
-    let c5 = |i: i32| shade[(i & 511) as usize] as u16;
-    let (color, semi, bit15) = if TEX == TEX_NONE {
+    if TEX == TEX_NONE {
+        let dst = vram[index & (VRAM_LEN - 1)];
         if MASK_CHECK && dst & 0x8000 != 0 {
             return;
         }
-        let c = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
-        (c, BLEND, 0)
+        let c5 = |i: i32| shade[(i & 511) as usize] as u16;
+        let color = pack555(c5(rgb[0]), c5(rgb[1]), c5(rgb[2]));
+        let color = if BLEND {
+            blend(env.blend, dst, color)
+        } else {
+            color
+        };
+        vram[index & (VRAM_LEN - 1)] = color | env.mask_or;
     } else if let Some(lut) = lut {
         let e = lut[env.sampler.index4::<CACHE>(vram, cache, u, v)];
         write_shaded::<BLEND, MASK_CHECK>(vram, index, e, env.mask_or, env.blend);
-        return;
     } else {
         // The texel is read whether or not the mask check keeps the pixel: the read goes
         // through the texture cache (docs/hardware/gpu.md §10).
         let t = env.sampler.fetch::<TEX, CACHE>(vram, cache, u, v);
-        if t == 0 || (MASK_CHECK && dst & 0x8000 != 0) {
-            return;
-        }
-        let c = if RAW {
-            t & 0x7FFF
-        } else {
-            // (docs/hardware/gpu.md §6) c5 = clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3.
-            let t = t as i32;
-            pack555(
-                c5(((t & 0x1F) * rgb[0]) >> 4),
-                c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
-                c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
-            )
-        };
-        (c, BLEND && t & 0x8000 != 0, t & 0x8000)
+        write_texel::<RAW, BLEND, MASK_CHECK>(vram, index, t, rgb, shade, env);
+    }
+}
+
+/// Write one textured pixel whose texel `t` (a 15-bit texel or a CLUT entry) has been read,
+/// as [`shade_pixel`] does after its fetch: texel 0000h leaves the pixel alone, then the
+/// modulation by `rgb` through `shade` (or the raw texel), blending when the texel's bit 15
+/// is set, mask check and set (docs/hardware/gpu.md §6).
+#[inline(always)]
+pub(crate) fn write_texel<const RAW: bool, const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    index: usize,
+    t: u16,
+    rgb: [i32; 3],
+    shade: &ShadeTable,
+    env: &PixelEnv,
+) {
+    let dst = vram[index & (VRAM_LEN - 1)];
+    if t == 0 || (MASK_CHECK && dst & 0x8000 != 0) {
+        return;
+    }
+    let c5 = |i: i32| shade[(i & 511) as usize] as u16;
+    let color = if RAW {
+        t & 0x7FFF
+    } else {
+        // (docs/hardware/gpu.md §6) c5 = clamp(((t5 * c8) >> 4) + dither, 0, 255) >> 3.
+        let t = t as i32;
+        pack555(
+            c5(((t & 0x1F) * rgb[0]) >> 4),
+            c5((((t >> 5) & 0x1F) * rgb[1]) >> 4),
+            c5((((t >> 10) & 0x1F) * rgb[2]) >> 4),
+        )
     };
     // Textured pixels blend per texel (bit 15), which varies pixel to pixel: both results are
     // computed and one is selected, with no branch to mispredict.
     let color = if BLEND {
-        let keep = 0u16.wrapping_sub(u16::from(!semi));
+        let keep = 0u16.wrapping_sub(u16::from(t & 0x8000 == 0));
         (blend(env.blend, dst, color) & !keep) | (color & keep)
     } else {
         color
     };
-    vram[index & (VRAM_LEN - 1)] = color | bit15 | env.mask_or;
+    vram[index & (VRAM_LEN - 1)] = color | (t & 0x8000) | env.mask_or;
 }
 
 /// Write one pixel of a primitive whose texel colours come shaded from a table
