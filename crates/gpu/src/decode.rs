@@ -294,37 +294,8 @@ pub enum Field {
     CheckMask(bool),
     /// The words of a continuation.
     Words(usize),
-    /// GP1(03h): the display on (bit 0 clear) or off.
-    DisplayEnabled(bool),
-    /// GP1(04h): the DMA direction, 0-3.
-    DmaDirection(u8),
-    /// GP1(05h): the VRAM position of the display's top-left corner.
-    DisplayStart {
-        /// Left edge.
-        x: u16,
-        /// Top line.
-        y: u16,
-    },
-    /// GP1(06h): the horizontal display range, in video clock cycles.
-    HorizontalRange {
-        /// Start.
-        x1: u16,
-        /// End.
-        x2: u16,
-    },
-    /// GP1(07h): the vertical display range, in scanlines.
-    VerticalRange {
-        /// Start.
-        y1: u16,
-        /// End.
-        y2: u16,
-    },
-    /// GP1(08h): the display mode bits 0-7.
-    DisplayMode(u8),
-    /// GP1(09h): texture disable allowed (bit 0).
-    TextureDisableAllowed(bool),
-    /// GP1(10h)-(1Fh): the register asked for (bits 0-2).
-    InfoRegister(u8),
+    /// A GP1 command that carries fields (03h-09h, 10h-1Fh), as [`Gp1`] reads them.
+    Gp1(Gp1),
 }
 
 /// What applies to a primitive's pixels, from its command and the drawing state
@@ -842,15 +813,8 @@ fn decode_gp1(word: u32) -> Decoded {
     };
     let mut d = Decoded::new(Kind::Gp1, name);
     match command {
-        Gp1::DisplayEnabled(enabled) => d.field(Field::DisplayEnabled(enabled)),
-        Gp1::DmaDirection(direction) => d.field(Field::DmaDirection(direction)),
-        Gp1::DisplayStart { x, y } => d.field(Field::DisplayStart { x, y }),
-        Gp1::HorizontalRange { x1, x2 } => d.field(Field::HorizontalRange { x1, x2 }),
-        Gp1::VerticalRange { y1, y2 } => d.field(Field::VerticalRange { y1, y2 }),
-        Gp1::DisplayMode(mode) => d.field(Field::DisplayMode(mode)),
-        Gp1::AllowTextureDisable(allow) => d.field(Field::TextureDisableAllowed(allow)),
-        Gp1::GetInfo(register) => d.field(Field::InfoRegister(register)),
         Gp1::Reset | Gp1::ResetCommandBuffer | Gp1::AcknowledgeIrq | Gp1::Unused(_) => {}
+        fields => d.field(Field::Gp1(fields)),
     }
     d
 }

@@ -2,6 +2,7 @@
 //! command classes and the rasterizer's drop reasons.
 
 use gpu::decode::{Class, DropReason, Field, Flags, Texture};
+use gpu::gp1::Gp1;
 use gpu::{BlendMode, TextureDepth};
 
 /// `(name, value)` rows of one decoded field, in the order the page lists them. A
@@ -40,14 +41,22 @@ pub(super) fn field_rows(field: &Field, rows: &mut Vec<(String, String)>) {
         Field::SetMask(b) => row("set bit 15", on_off(b)),
         Field::CheckMask(b) => row("skip masked", on_off(b)),
         Field::Words(n) => row("words", n.to_string()),
-        Field::DisplayEnabled(on) => row("display", on_off(on)),
-        Field::DmaDirection(d) => row("direction", d.to_string()),
-        Field::DisplayStart { x, y } => row("start", point(x.into(), y.into())),
-        Field::HorizontalRange { x1, x2 } => row("x1..x2", format!("{x1}..{x2}")),
-        Field::VerticalRange { y1, y2 } => row("y1..y2", format!("{y1}..{y2}")),
-        Field::DisplayMode(bits) => row("mode bits", format!("{bits:02x}h")),
-        Field::TextureDisableAllowed(b) => row("allowed", u8::from(b).to_string()),
-        Field::InfoRegister(r) => row("register", r.to_string()),
+        Field::Gp1(command) => gp1_rows(command, &mut row),
+    }
+}
+
+/// The rows of a GP1 command's fields; none for a command without fields.
+fn gp1_rows(command: Gp1, row: &mut impl FnMut(&str, String)) {
+    match command {
+        Gp1::DisplayEnabled(on) => row("display", if on { "on" } else { "off" }.into()),
+        Gp1::DmaDirection(d) => row("direction", d.to_string()),
+        Gp1::DisplayStart { x, y } => row("start", format!("({x}, {y})")),
+        Gp1::HorizontalRange { x1, x2 } => row("x1..x2", format!("{x1}..{x2}")),
+        Gp1::VerticalRange { y1, y2 } => row("y1..y2", format!("{y1}..{y2}")),
+        Gp1::DisplayMode(bits) => row("mode bits", format!("{bits:02x}h")),
+        Gp1::AllowTextureDisable(b) => row("allowed", u8::from(b).to_string()),
+        Gp1::GetInfo(r) => row("register", r.to_string()),
+        Gp1::Reset | Gp1::ResetCommandBuffer | Gp1::AcknowledgeIrq | Gp1::Unused(_) => {}
     }
 }
 
@@ -206,7 +215,13 @@ mod tests {
             rows(Field::Flags(f)),
             [pair("flags", "Gouraud, dithered, mask check")]
         );
-        assert_eq!(rows(Field::DisplayMode(1)), [pair("mode bits", "01h")]);
-        assert_eq!(rows(Field::DisplayEnabled(false)), [pair("display", "off")]);
+        let gp1 = |g| rows(Field::Gp1(g));
+        assert_eq!(gp1(Gp1::DisplayMode(1)), [pair("mode bits", "01h")]);
+        assert_eq!(gp1(Gp1::DisplayEnabled(false)), [pair("display", "off")]);
+        assert_eq!(
+            gp1(Gp1::DisplayStart { x: 0, y: 256 }),
+            [pair("start", "(0, 256)")]
+        );
+        assert_eq!(gp1(Gp1::AcknowledgeIrq), []);
     }
 }
