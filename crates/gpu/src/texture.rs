@@ -226,6 +226,18 @@ pub(crate) fn texture_halfword<const TEX: u8, const CACHE: u8>(
     cache.halfword::<TEX, CACHE>(vram, address)
 }
 
+/// The CLUT index held by texel `u` of a texture halfword `word` of kind `TEX` (1 = 4-bit,
+/// 2 = 8-bit): 4 bits from bit `(u & 3) * 4`, or 8 bits from bit `(u & 1) * 8`; a halfword
+/// holds four or two texels, the lowest U first (docs/hardware/gpu.md §7).
+#[inline(always)]
+pub(crate) fn clut_index<const TEX: u8>(word: u16, u: usize) -> usize {
+    if TEX == 1 {
+        ((word >> ((u & 3) * 4)) & 0xF) as usize
+    } else {
+        ((word >> ((u & 1) * 8)) & 0xFF) as usize
+    }
+}
+
 impl<'a> Sampler<'a> {
     /// A sampler for the page at (`page_x`, `page_y`) through `window`.
     pub fn new(clut: &'a [u16; 256], page_x: usize, page_y: usize, window: TextureWindow) -> Self {
@@ -274,8 +286,7 @@ impl<'a> Sampler<'a> {
         v: u8,
     ) -> usize {
         let (address, u) = self.address::<1>(u, v);
-        let word = texture_halfword::<1, CACHE>(vram, cache, address);
-        ((word >> ((u & 3) * 4)) & 0xF) as usize
+        clut_index::<1>(texture_halfword::<1, CACHE>(vram, cache, address), u)
     }
 
     /// The texel at (u, v) for a page of kind `TEX` (1 = 4-bit, 2 = 8-bit, 3 = 15-bit),
@@ -292,8 +303,7 @@ impl<'a> Sampler<'a> {
         let (address, u) = self.address::<TEX>(u, v);
         let word = texture_halfword::<TEX, CACHE>(vram, cache, address);
         match TEX {
-            1 => self.clut[((word >> ((u & 3) * 4)) & 0xF) as usize],
-            2 => self.clut[((word >> ((u & 1) * 8)) & 0xFF) as usize],
+            1 | 2 => self.clut[clut_index::<TEX>(word, u)],
             _ => word,
         }
     }

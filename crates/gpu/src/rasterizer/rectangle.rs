@@ -13,6 +13,7 @@ use crate::color::PLAIN_TABLE;
 use crate::primitive::Rectangle;
 use crate::rows::Rows;
 use crate::state::{DrawState, DrawingArea};
+use crate::texture::clut_index;
 use crate::texture_cache::{TextureCache, mode};
 use crate::{VRAM_LEN, VRAM_WIDTH};
 
@@ -191,11 +192,11 @@ fn pixel<const TEX: u8, const RAW: bool, const BLEND: bool, const MASK_CHECK: bo
 ) {
     match TEX {
         1 => {
-            let e = env.lut[((word >> (4 * j)) & 0xF) as usize];
+            let e = env.lut[clut_index::<1>(word, j)];
             write_shaded::<BLEND, MASK_CHECK>(vram, index, e, env.mask_or, env.blend);
         }
         2 => {
-            let t = env.sampler.clut[((word >> (8 * j)) & 0xFF) as usize];
+            let t = env.sampler.clut[clut_index::<2>(word, j)];
             write_texel::<RAW, BLEND, MASK_CHECK>(vram, index, t, flat, &PLAIN_TABLE, env);
         }
         _ => write_texel::<RAW, BLEND, MASK_CHECK>(vram, index, word, flat, &PLAIN_TABLE, env),
