@@ -278,39 +278,32 @@ impl Gte {
                 self.finish_with(Opcode::Mvmva, flags)
             }
             opcode_bits::NCDS => {
-                self.flag_bits = 0;
-                self.ncds(c.shift(), c.lm());
-                self.finish(Opcode::Ncds)
+                let flags = self.ncds(c.shift(), c.lm());
+                self.finish_with(Opcode::Ncds, flags)
             }
             opcode_bits::CDP => {
-                self.flag_bits = 0;
-                self.cdp(c.shift(), c.lm());
-                self.finish(Opcode::Cdp)
+                let flags = self.cdp(c.shift(), c.lm());
+                self.finish_with(Opcode::Cdp, flags)
             }
             opcode_bits::NCDT => {
-                self.flag_bits = 0;
-                self.ncdt(c.shift(), c.lm());
-                self.finish(Opcode::Ncdt)
+                let flags = self.ncdt(c.shift(), c.lm());
+                self.finish_with(Opcode::Ncdt, flags)
             }
             opcode_bits::NCCS => {
-                self.flag_bits = 0;
-                self.nccs(c.shift(), c.lm());
-                self.finish(Opcode::Nccs)
+                let flags = self.nccs(c.shift(), c.lm());
+                self.finish_with(Opcode::Nccs, flags)
             }
             opcode_bits::CC => {
-                self.flag_bits = 0;
-                self.cc(c.shift(), c.lm());
-                self.finish(Opcode::Cc)
+                let flags = self.cc(c.shift(), c.lm());
+                self.finish_with(Opcode::Cc, flags)
             }
             opcode_bits::NCS => {
-                self.flag_bits = 0;
-                self.ncs(c.shift(), c.lm());
-                self.finish(Opcode::Ncs)
+                let flags = self.ncs(c.shift(), c.lm());
+                self.finish_with(Opcode::Ncs, flags)
             }
             opcode_bits::NCT => {
-                self.flag_bits = 0;
-                self.nct(c.shift(), c.lm());
-                self.finish(Opcode::Nct)
+                let flags = self.nct(c.shift(), c.lm());
+                self.finish_with(Opcode::Nct, flags)
             }
             opcode_bits::SQR => {
                 let flags = self.sqr(c.shift());
@@ -348,9 +341,8 @@ impl Gte {
                 self.finish_with(Opcode::Gpl, flags)
             }
             opcode_bits::NCCT => {
-                self.flag_bits = 0;
-                self.ncct(c.shift(), c.lm());
-                self.finish(Opcode::Ncct)
+                let flags = self.ncct(c.shift(), c.lm());
+                self.finish_with(Opcode::Ncct, flags)
             }
             // The undefined opcodes one by one (docs/hardware/gte.md §1): with all 64 values
             // of bits 0-5 named, the jump table needs no range check.
@@ -375,8 +367,9 @@ impl Gte {
     /// The end of a command: FLAG is the bits its steps set, `bits`, an error source having
     /// brought bit 31 with it (docs/hardware/gte.md §3), and its cycle count. In each
     /// dispatch arm, so that the compiler sees which bits the command can set. The short
-    /// commands collect their bits in a local and pass them here, so that their arms touch
-    /// no scratch field (docs/performance.md, "The plain loop").
+    /// commands and the lighting commands collect their bits in a local and pass them here,
+    /// so that their arms touch no scratch field (docs/performance.md, "The plain loop",
+    /// "The plain loop: short paths").
     #[inline(always)]
     fn finish_with(&mut self, op: Opcode, bits: u32) -> Option<u32> {
         self.regs.set_flag(Flag::from_register(bits));

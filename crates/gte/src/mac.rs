@@ -434,15 +434,13 @@ impl Gte {
         }
     }
 
-    /// Store a step's MAC1-3 and IR1-3, push `colors` in order onto the colour FIFO and add
-    /// `flags` to FLAG.
+    /// Store a step's MAC1-3 and IR1-3 and push `colors` in order onto the colour FIFO.
     #[inline(always)]
-    pub(crate) fn step_result(&mut self, last: Step, colors: &[u32], flags: u32) {
+    pub(crate) fn step_result(&mut self, last: Step, colors: &[u32]) {
         self.store_step(last);
         for &c in colors {
             self.regs.push_rgb(c);
         }
-        self.flag_bits |= flags;
     }
 }
 

@@ -49,7 +49,7 @@ impl Gte {
             shift,
             lm,
         );
-        self.step_result(last, &[], 0);
+        self.store_step(last);
     }
 
     /// Colour bytes R, G, B of `rgb` shifted left 16.

@@ -1,8 +1,9 @@
 //! Lighting commands: NCS/NCT, NCCS/NCCT, NCDS/NCDT, CC and CDP (docs/hardware/gte.md §8).
 //!
 //! A command reads its operands once, carries the MAC1-3 and IR1-3 values of each step to the
-//! next, and stores the last step's MAC1-3 and IR1-3, the colours it pushes and its FLAG bits
-//! at the end: the registers then hold what the hardware's step-by-step writes leave.
+//! next, and stores the last step's MAC1-3 and IR1-3 and the colours it pushes at the end: the
+//! registers then hold what the hardware's step-by-step writes leave. Its FLAG bits are
+//! collected in a local and returned to the dispatch.
 //!
 //! Why this shape: the IRs of the second step, the colour step and the depth cue are tested
 //! together, one compare each, with the clamps out of line when one fires: NCDS 370 → 316
@@ -133,14 +134,14 @@ enum Finish {
 
 impl Gte {
     /// The normal-colour commands on `COUNT` vertices from V0 (1 or 3), with BK and FC sums
-    /// plain or not by `PLAIN`.
+    /// plain or not by `PLAIN`; returns the FLAG bits.
     #[inline(always)]
     fn normal_color<const COUNT: usize, const PLAIN: bool>(
         &mut self,
         shift: u32,
         lm: bool,
         how: Finish,
-    ) {
+    ) -> u32 {
         let l = Lighting::read(&self.regs, shift, lm);
         let mut flags = 0;
         let mut colors = [0; COUNT];
@@ -150,55 +151,61 @@ impl Gte {
             (_, colors[1]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(1), how);
             (last, colors[2]) = l.vertex::<PLAIN>(&mut flags, self.regs.v(2), how);
         }
-        self.step_result(last, &colors, flags);
+        self.step_result(last, &colors);
+        flags
     }
 
     #[inline(always)]
-    fn normal_color_command<const COUNT: usize>(&mut self, shift: u32, lm: bool, how: Finish) {
+    fn normal_color_command<const COUNT: usize>(
+        &mut self,
+        shift: u32,
+        lm: bool,
+        how: Finish,
+    ) -> u32 {
         with_constant_sf_lm!(shift, lm, {
             // Every sum from BK (three products) and from FC (one product) plain addition
             // (docs/hardware/gte.md §4), for every vertex alike.
             if self.regs.bk_plain() && self.regs.fc_plain() {
-                self.normal_color::<COUNT, true>(shift, lm, how);
+                self.normal_color::<COUNT, true>(shift, lm, how)
             } else {
-                self.normal_color::<COUNT, false>(shift, lm, how);
+                self.normal_color::<COUNT, false>(shift, lm, how)
             }
         })
     }
 
-    /// NCS: light V0.
-    pub(crate) fn ncs(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<1>(shift, lm, Finish::Light);
+    /// NCS: light V0. Returns the FLAG bits.
+    pub(crate) fn ncs(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<1>(shift, lm, Finish::Light)
     }
 
-    /// NCT: light V0, V1, V2.
-    pub(crate) fn nct(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<3>(shift, lm, Finish::Light);
+    /// NCT: light V0, V1, V2. Returns the FLAG bits.
+    pub(crate) fn nct(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<3>(shift, lm, Finish::Light)
     }
 
-    /// NCCS: light V0 and multiply by RGBC.
-    pub(crate) fn nccs(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<1>(shift, lm, Finish::Color);
+    /// NCCS: light V0 and multiply by RGBC. Returns the FLAG bits.
+    pub(crate) fn nccs(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<1>(shift, lm, Finish::Color)
     }
 
-    /// NCCT: NCCS for V0, V1, V2.
-    pub(crate) fn ncct(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<3>(shift, lm, Finish::Color);
+    /// NCCT: NCCS for V0, V1, V2. Returns the FLAG bits.
+    pub(crate) fn ncct(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<3>(shift, lm, Finish::Color)
     }
 
-    /// NCDS: light V0, multiply by RGBC, depth-cue towards FC.
-    pub(crate) fn ncds(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<1>(shift, lm, Finish::DepthCue);
+    /// NCDS: light V0, multiply by RGBC, depth-cue towards FC. Returns the FLAG bits.
+    pub(crate) fn ncds(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<1>(shift, lm, Finish::DepthCue)
     }
 
-    /// NCDT: NCDS for V0, V1, V2.
-    pub(crate) fn ncdt(&mut self, shift: u32, lm: bool) {
-        self.normal_color_command::<3>(shift, lm, Finish::DepthCue);
+    /// NCDT: NCDS for V0, V1, V2. Returns the FLAG bits.
+    pub(crate) fn ncdt(&mut self, shift: u32, lm: bool) -> u32 {
+        self.normal_color_command::<3>(shift, lm, Finish::DepthCue)
     }
 
     /// CC and CDP: IR = BK + LCM * IR, then times RGBC (and depth-cued towards FC).
     #[inline(always)]
-    fn color_color(&mut self, shift: u32, lm: bool, how: Finish) {
+    fn color_color(&mut self, shift: u32, lm: bool, how: Finish) -> u32 {
         let ir = self.ir_vector();
         let l = Lighting::read(&self.regs, shift, lm);
         let plain = self.regs.bk_plain() && self.regs.fc_plain();
@@ -214,16 +221,18 @@ impl Gte {
             l.color_step(&mut flags, lit.ir)
         };
         let c = color(&mut flags, last.mac, l.code);
-        self.step_result(last, &[c], flags);
+        self.step_result(last, &[c]);
+        flags
     }
 
-    /// CC: IR = BK + LCM * IR, multiply by RGBC.
-    pub(crate) fn cc(&mut self, shift: u32, lm: bool) {
+    /// CC: IR = BK + LCM * IR, multiply by RGBC. Returns the FLAG bits.
+    pub(crate) fn cc(&mut self, shift: u32, lm: bool) -> u32 {
         with_constant_sf_lm!(shift, lm, self.color_color(shift, lm, Finish::Color))
     }
 
-    /// CDP: IR = BK + LCM * IR, multiply by RGBC, depth-cue towards FC.
-    pub(crate) fn cdp(&mut self, shift: u32, lm: bool) {
+    /// CDP: IR = BK + LCM * IR, multiply by RGBC, depth-cue towards FC. Returns the FLAG
+    /// bits.
+    pub(crate) fn cdp(&mut self, shift: u32, lm: bool) -> u32 {
         with_constant_sf_lm!(shift, lm, self.color_color(shift, lm, Finish::DepthCue))
     }
 
