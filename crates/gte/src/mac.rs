@@ -157,6 +157,25 @@ pub(crate) fn color_entry(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
     packed
 }
 
+/// [`color_entry`] for MAC values that seldom leave the colour range: Cn lies inside
+/// 0..=FFh exactly when MACn lies in 0..=FFFh, so the three channels are one test
+/// ([`all_within_32`]) and the saturation is kept out of line.
+#[inline(always)]
+pub(crate) fn color_entry_rare(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
+    if all_within_32(mac, 0, 0xFFF) {
+        let [r, g, b] = mac.map(|m| (m >> 4) as u32);
+        return code | r | g << 8 | b << 16;
+    }
+    saturate_color(flags, mac, code)
+}
+
+/// [`color_entry`] out of line, for [`color_entry_rare`]'s values outside the range.
+#[cold]
+#[inline(never)]
+fn saturate_color(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
+    color_entry(flags, mac, code)
+}
+
 /// FLAG bits 16/15 into `flags` for a MAC0-path value outside the 32-bit range
 /// (docs/hardware/gte.md §4). Leaving it takes extreme operands (a quotient near its limit
 /// times an IR near its own), so the test is a branch marked cold rather than a select.
@@ -447,6 +466,42 @@ impl Gte {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The grouped colour test against each channel clamped on its own, with every
+    /// channel at and around the edges of 0..=FFFh and the other two anywhere among them.
+    #[test]
+    fn color_entry_rare_matches_each_channel() {
+        let edges = [
+            i32::MIN,
+            -0x10,
+            -1,
+            0,
+            0xF,
+            0x10,
+            0xFFF,
+            0x1000,
+            0x7FFF,
+            i32::MAX,
+        ];
+        for r in edges {
+            for g in edges {
+                for b in edges {
+                    let mut expected_flags = 0;
+                    let mut expected = 0xAB00_0000;
+                    for (n, m) in [r, g, b].into_iter().enumerate() {
+                        let c = (m >> 4).clamp(0, 0xFF);
+                        if c != m >> 4 {
+                            expected_flags |= 1 << (21 - n);
+                        }
+                        expected |= (c as u32) << (8 * n);
+                    }
+                    let mut flags = 0;
+                    let packed = color_entry_rare(&mut flags, [r, g, b], 0xAB00_0000);
+                    assert_eq!((packed, flags), (expected, expected_flags), "{r} {g} {b}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn wrap44_examples() {

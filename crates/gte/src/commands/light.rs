@@ -8,11 +8,13 @@
 //! Why this shape: the IRs of the second step, the colour step and the depth cue are tested
 //! together, one compare each, with the clamps out of line when one fires: NCDS 370 → 316
 //! instructions a call, 0.855 of its time (docs/performance.md, "Saturation tests"). The light
-//! step keeps a test per IR, as light from behind a surface saturates it often.
+//! step keeps a test per IR, as light from behind a surface saturates it often. The three
+//! colour bytes are one test too (NCDS 240 → 233 instructions in the plain loop, "The plain
+//! loop: short paths").
 
 use crate::Gte;
 use crate::commands::depth_cue::interpolate;
-use crate::mac::{Step, color_entry as color, ir_test, matrix_products, step, step_with};
+use crate::mac::{Step, color_entry_rare as color, ir_test, matrix_products, step, step_with};
 use crate::registers::RegisterFile;
 
 /// The operands of a lighting command, read once per command, and the register file for
