@@ -17,18 +17,15 @@ use crate::commands::depth_cue::interpolate;
 use crate::mac::{Step, color_entry_rare as color, ir_test, matrix_products, step, step_with};
 use crate::registers::RegisterFile;
 
-/// The operands of a lighting command, read once per command, and the register file for
-/// IR0, which the depth cue alone reads, at its use.
+/// The operands of a lighting command that its first step reads, read once per command, and
+/// the register file for LCM, BK, FC and IR0, read at their use: loaded up front for the
+/// three vertices, they did not fit the registers and went through the stack (NCDT 547 →
+/// 537 instructions a call in the plain loop, docs/performance.md, "The plain loop: short
+/// paths").
 struct Lighting<'r> {
     regs: &'r RegisterFile,
     /// Light matrix LLM, widened.
     llm: [[i64; 3]; 3],
-    /// Light colour matrix LCM, widened.
-    lcm: [[i64; 3]; 3],
-    /// Background colour BK << 12, the start of the second step.
-    bk: [i64; 3],
-    /// Far colour FC << 12, the start of the depth cue's first step.
-    fc: [i64; 3],
     /// RGBC colour bytes R, G, B.
     color: [i64; 3],
     /// RGBC's CODE byte, in place.
@@ -45,14 +42,29 @@ impl<'r> Lighting<'r> {
         Lighting {
             regs,
             llm: regs.llm_wide(),
-            lcm: regs.lcm_wide(),
-            bk: regs.bk().map(|b| (b as i64) << 12),
-            fc: regs.fc().map(|f| (f as i64) << 12),
             color: [0, 8, 16].map(|s| ((rgbc >> s) & 0xFF) as i64),
             code: rgbc & 0xFF00_0000,
             shift,
             lm,
         }
+    }
+
+    /// Light colour matrix LCM, widened.
+    #[inline(always)]
+    fn lcm(&self) -> [[i64; 3]; 3] {
+        self.regs.lcm_wide()
+    }
+
+    /// Background colour BK << 12, the start of the second step.
+    #[inline(always)]
+    fn bk(&self) -> [i64; 3] {
+        self.regs.bk().map(|b| (b as i64) << 12)
+    }
+
+    /// Far colour FC << 12, the start of the depth cue's first step.
+    #[inline(always)]
+    fn fc(&self) -> [i64; 3] {
+        self.regs.fc().map(|f| (f as i64) << 12)
     }
 
     /// MACn = (start_n + row n of `m` * `v`) SAR sf, IRn by lm.
@@ -95,7 +107,7 @@ impl<'r> Lighting<'r> {
     /// IR = BK + LCM * IR.
     #[inline(always)]
     fn background_light<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
-        self.matrix_step(flags, &self.lcm, ir, self.bk, PLAIN)
+        self.matrix_step(flags, &self.lcm(), ir, self.bk(), PLAIN)
     }
 
     /// (Cn * IRn) << 4 with Cn the RGBC colour bytes.
@@ -119,7 +131,15 @@ impl<'r> Lighting<'r> {
     fn depth_cue<const PLAIN: bool>(&self, flags: &mut u32, ir: [i64; 3]) -> Step {
         let input = self.color_times(ir);
         let ir0 = self.regs.ir(0) as i64;
-        interpolate::<{ ir_test::GROUPED }>(flags, input, self.fc, ir0, PLAIN, self.shift, self.lm)
+        interpolate::<{ ir_test::GROUPED }>(
+            flags,
+            input,
+            self.fc(),
+            ir0,
+            PLAIN,
+            self.shift,
+            self.lm,
+        )
     }
 }
 
@@ -212,7 +232,7 @@ impl Gte {
         let l = Lighting::read(&self.regs, shift, lm);
         let plain = self.regs.bk_plain() && self.regs.fc_plain();
         let mut flags = 0;
-        let lit = l.matrix_step(&mut flags, &l.lcm, ir, l.bk, plain);
+        let lit = l.matrix_step(&mut flags, &l.lcm(), ir, l.bk(), plain);
         let last = if how == Finish::DepthCue {
             if plain {
                 l.depth_cue::<true>(&mut flags, lit.ir)
