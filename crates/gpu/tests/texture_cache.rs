@@ -708,3 +708,70 @@ proptest! {
         prop_assert!(lanes.vram().as_slice() == one.vram().as_slice());
     }
 }
+
+/// Upload `w` x `h` halfwords at (x, y) (GP0(A0h)), taken from `next`.
+fn upload(g: &mut Gpu, (x, y): (u32, u32), (w, h): (u32, u32), mut next: impl FnMut() -> u16) {
+    g.gp0_words(&[0xA000_0000, xy(x, y), xy(w, h)]);
+    let words: Vec<u32> = (0..w * h / 2)
+        .map(|_| u32::from(next()) | u32::from(next()) << 16)
+        .collect();
+    g.gp0_words(&words);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Raw 15-bit triangles whose page lies clear of the drawing area are drawn with the tags
+    /// tracked eight pixels at a time, each group's texels read before its pixels are
+    /// written (docs/gpu.md, "Texture cache"). Over a page of random texels, about one in
+    /// four 0000h (transparent: the pixel keeps its value) and half of the others with bit
+    /// 15 set, onto random pixels, opaque or semi-transparent, with the mask bit set or not
+    /// and checked or not (E6h), they leave the pixels of the same triangles drawn with the
+    /// cache off, pixel by pixel, reading VRAM (docs/hardware/gpu.md §6). The triangles reach
+    /// the right edge and the last line of VRAM, where a group of eight runs past its end.
+    #[test]
+    fn raw15_groups_draw_as_pixel_by_pixel(
+        tris in prop::collection::vec(
+            ([(0u32..1024, 400u32..512), (0u32..1024, 400u32..512), (0u32..1024, 400u32..512)],
+             [(0u32..256, 0u32..256), (0u32..256, 0u32..256), (0u32..256, 0u32..256)],
+             any::<bool>()),
+            1..6,
+        ),
+        (set, check) in any::<(bool, bool)>(),
+        seed in any::<u32>(),
+    ) {
+        let (mut groups, mut pixels) = (gpu(false), gpu(false));
+        pixels.set_texture_cache(false);
+        for g in [&mut groups, &mut pixels] {
+            let mut state = seed | 1;
+            let mut next = move || {
+                state ^= state << 13;
+                state ^= state >> 17;
+                state ^= state << 5;
+                state
+            };
+            let mut texel = || {
+                let r = next();
+                if r & 3 == 0 { 0 } else { (r >> 8) as u16 | 1 }
+            };
+            upload(g, (PAGE_X, 0), (256, 256), &mut texel);
+            upload(g, (0, 400), (1024, 112), || next() as u16);
+            g.gp0(0xE600_0000 | u32::from(set) | u32::from(check) << 1);
+            for (at, uv, semi) in &tris {
+                let [a, b, c] = *at;
+                let [ua, ub, uc] = uv.map(|(u, v)| v << 8 | u);
+                let texpage = (PAGE_X / 64) | 2 << 7;
+                g.gp0_words(&[
+                    0x2500_0000 | u32::from(*semi) << 25,
+                    xy(a.0, a.1),
+                    ua,
+                    xy(b.0, b.1),
+                    texpage << 16 | ub,
+                    xy(c.0, c.1),
+                    uc,
+                ]);
+            }
+        }
+        prop_assert!(groups.vram().as_slice() == pixels.vram().as_slice());
+    }
+}

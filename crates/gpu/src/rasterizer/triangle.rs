@@ -1249,7 +1249,12 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
 
 /// [`raw15_pixels`] with the tags tracked: eight pixels' texel reads worked out at a time and
 /// handed to `track` (their halfwords' addresses in lanes, and how many of the eight are
-/// read) before they are read.
+/// read) before they are read. When neither blending nor the mask check applies, the eight
+/// pixels are written with one store from the span's texels, a texel of 0000h (and a lane
+/// past the span, left unread as 0000h) keeping the pixel's value (docs/hardware/gpu.md §6).
+/// The group's reads then come before its writes, which pixel by pixel they do not: the two
+/// agree because with the tags tracked and no copies kept the page lies clear of the drawing
+/// area (`TextureCache::prepare`).
 #[inline(always)]
 fn raw15_groups<const BLEND: bool, const MASK_CHECK: bool>(
     vram: &mut [u16; VRAM_LEN],
@@ -1261,23 +1266,42 @@ fn raw15_groups<const BLEND: bool, const MASK_CHECK: bool>(
     let mut x = x_start;
     while x < x_end {
         let r = span::PlainReads::new::<3>(page, (u, v), &steps);
-        let n = ((x_end - x) as usize).min(8);
+        let n = ((x_end - x) as usize).min(LANES);
         track(r.lanes, n);
-        for k in 0..n {
-            let texel = vram[r.address[k] as usize & (VRAM_LEN - 1)];
-            let e = if texel == 0 {
-                0
-            } else {
-                0x1_0000 | u32::from(texel)
-            };
-            let at = row + x as usize + k;
-            super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
+        let at = row + x as usize;
+        let mut texels = [0; LANES];
+        for (t, &a) in texels.iter_mut().zip(&r.address).take(n) {
+            *t = vram[a as usize & (VRAM_LEN - 1)];
+        }
+        match vram
+            .get_mut(at..)
+            .and_then(|d| d.first_chunk_mut::<LANES>())
+        {
+            Some(dst) if !BLEND && !MASK_CHECK => {
+                let t = wide::u16x8::new(texels);
+                let keep = t.simd_eq(wide::u16x8::ZERO);
+                let out = t | wide::u16x8::splat(mask_or);
+                *dst = keep.bitselect(wide::u16x8::new(*dst), out).to_array();
+            }
+            _ => {
+                for (k, &texel) in texels.iter().enumerate().take(n) {
+                    let e = if texel == 0 {
+                        0
+                    } else {
+                        0x1_0000 | u32::from(texel)
+                    };
+                    super::write_shaded::<BLEND, MASK_CHECK>(vram, at + k, e, mask_or, blend);
+                }
+            }
         }
         u = u.wrapping_add(du.wrapping_mul(8));
         v = v.wrapping_add(dv.wrapping_mul(8));
         x += 8;
     }
 }
+
+/// Pixels in a group of eight.
+const LANES: usize = 8;
 
 #[cfg(test)]
 mod tests {
