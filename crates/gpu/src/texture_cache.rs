@@ -419,6 +419,42 @@ impl TextureCache {
         vram[address]
     }
 
+    /// The four VRAM halfwords from `address` (a multiple of four, below `VRAM_LEN`) read
+    /// one after the other, the lowest first, as a texture of kind `TEX` reads them in
+    /// [`mode`] `MODE`: they share one entry and one tag (docs/hardware/gpu.md §10), so the
+    /// first read may miss and the other three hit, and the misses and tags left are those of
+    /// four [`TextureCache::halfword`] reads. The halfwords are those reads' when nothing
+    /// is written under them between the reads.
+    #[inline(always)]
+    pub(crate) fn entry_halfwords<const TEX: u8, const MODE: u8>(
+        &mut self,
+        vram: &[u16; VRAM_LEN],
+        address: usize,
+    ) -> [u16; ENTRY_HALFWORDS] {
+        let address = address & (VRAM_LEN - ENTRY_HALFWORDS);
+        let tag = tag_of(address);
+        match MODE {
+            mode::OFF => {}
+            mode::TAGS => self.track::<TEX>(address),
+            mode::RUNS => {
+                if tag != self.last {
+                    self.track::<TEX>(address);
+                    self.last = tag;
+                }
+            }
+            _ => {
+                let i = entry_index::<TEX>(address);
+                if self.tags[i] != tag {
+                    self.data[i] = Self::loaded(vram, tag);
+                    self.tags[i] = tag;
+                    self.misses = self.misses.wrapping_add(1);
+                }
+                return self.data[i];
+            }
+        }
+        Self::loaded(vram, tag)
+    }
+
     /// A read of the halfword at `address` with the copies not kept: a miss replaces the
     /// entry's tag.
     #[inline(always)]

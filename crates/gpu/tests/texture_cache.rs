@@ -427,6 +427,46 @@ fn with_the_cache_off_a_sprite_reads_its_own_pixels() {
     }
 }
 
+/// A 4-bit sprite drawn over its own texel line with the cache on reads each entry when its
+/// first texel is needed, after the pixels before it are written (§10): a raw 16x1 sprite
+/// (GP0(65h)) at (0, 0) on the page at (0, 0), CLUT at (0, 256), reading u 8-23. Pixels 0-7
+/// take texels 8-15 from entry 0 (halfwords 0-3, loaded before any write) and overwrite
+/// halfwords 0-7; pixels 8-15 take texels 16-23 from entry 1 (halfwords 4-7), loaded only then,
+/// so from the values pixels 4 and 5 wrote. The expected row is worked out in that order.
+#[test]
+fn a_sprite_over_its_own_texel_line_loads_each_entry_when_it_reaches_it() {
+    let mut g = gpu(true);
+    g.gp0(0xE100_0000);
+    let clut = |i: u16| 0x0400 | (i * 0x0123 + 0x0031) & 0x3FFF;
+    for i in 0..16u16 {
+        g.vram_mut().set_pixel(usize::from(i), 256, clut(i));
+    }
+    let before = |x: usize| (x as u16 * 0x1357 + 0x2468) | 0x0001;
+    for x in 0..16 {
+        g.vram_mut().set_pixel(x, 0, before(x));
+    }
+    g.gp0_words(&[0x6500_0000, xy(0, 0), 0x4000 << 16 | 8, 1 << 16 | 16]);
+    let mut row: Vec<u16> = (0..16).map(before).collect();
+    let mut entry: Option<(usize, [u16; 4])> = None;
+    for p in 0..16 {
+        let u = 8 + p;
+        let e = u / 16;
+        let halfwords = match entry {
+            Some((k, h)) if k == e => h,
+            _ => {
+                let h = [0, 1, 2, 3].map(|i| row[4 * e + i]);
+                entry = Some((e, h));
+                h
+            }
+        };
+        let texel = halfwords[(u % 16) / 4] >> (4 * (u % 4)) & 0xF;
+        row[p] = clut(texel);
+    }
+    for (x, &expected) in row.iter().enumerate() {
+        assert_eq!(g.vram().pixel(x, 0), expected, "x {x}");
+    }
+}
+
 /// A triangle whose core vertex sorts last is walked upward, both parts (§3.4): the entry two
 /// of its rows share ends up holding the upper row's halfwords. Raw 15-bit, vertices (100,
 /// 400), (100, 420), (36, 464) reading u = x - 36, v = y - 400 (the core vertex is the third:

@@ -237,19 +237,29 @@ pub(crate) fn write_shaded<const BLEND: bool, const MASK_CHECK: bool>(
     mask_or: u16,
     mode: BlendMode,
 ) {
-    let dst = vram[index & (VRAM_LEN - 1)];
-    if e == 0 || (MASK_CHECK && dst & 0x8000 != 0) {
+    put_shaded::<BLEND, MASK_CHECK>(&mut vram[index & (VRAM_LEN - 1)], e, mask_or, mode);
+}
+
+/// [`write_shaded`] into the pixel `dst`.
+#[inline(always)]
+pub(crate) fn put_shaded<const BLEND: bool, const MASK_CHECK: bool>(
+    dst: &mut u16,
+    e: u32,
+    mask_or: u16,
+    mode: BlendMode,
+) {
+    if e == 0 || (MASK_CHECK && *dst & 0x8000 != 0) {
         return;
     }
     let t = e as u16;
     let (color, bit15) = (t & 0x7FFF, t & 0x8000);
     let color = if BLEND {
         let keep = 0u16.wrapping_sub(u16::from(bit15 == 0));
-        (blend(mode, dst, color) & !keep) | (color & keep)
+        (blend(mode, *dst, color) & !keep) | (color & keep)
     } else {
         color
     };
-    vram[index & (VRAM_LEN - 1)] = color | bit15 | mask_or;
+    *dst = color | bit15 | mask_or;
 }
 
 /// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (docs/hardware/gpu.md §3.4, §4).
