@@ -441,7 +441,7 @@ fn a_sprite_over_its_own_texel_line_loads_each_entry_when_it_reaches_it() {
     for i in 0..16u16 {
         g.vram_mut().set_pixel(usize::from(i), 256, clut(i));
     }
-    let before = |x: usize| (x as u16 * 0x1357 + 0x2468) | 0x0001;
+    let before = |x: usize| (x as u16).wrapping_mul(0x1357).wrapping_add(0x2468) | 0x0001;
     for x in 0..16 {
         g.vram_mut().set_pixel(x, 0, before(x));
     }
