@@ -82,10 +82,8 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
 /// primitive without mask check whose texture, if any, is modulated. `acc` holds the five
 /// 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the colour when not
 /// `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep their bit 15
-/// (docs/hardware/gpu.md §6, §7). The last group of a span stores eight pixels whatever the
-/// span's length, those past its end written back as they were (at the end of VRAM, only
-/// the pixels left: an untextured group its first and last four, two or one, a textured one
-/// pixel by pixel).
+/// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
+/// untextured one its first and last four, two or one, a textured one pixel by pixel.
 /// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
 /// wrapping ([`plain_page`]), so the eight texel addresses are computed together. `CACHE`:
 /// texels are read through the texture cache (docs/hardware/gpu.md §10), the reads of a span
@@ -177,23 +175,8 @@ fn groups<
     let n = (x_end - x) as usize;
     let (out, t, texel) = group(vram, &lanes, n);
     let start = row + x as usize;
-    if let Some(dst) = vram
-        .get_mut(start..)
-        .and_then(|d| d.first_chunk_mut::<LANES>())
-    {
-        // Eight pixels stored whatever `n`: those past the span (lanes `n` and up) and
-        // under a transparent texel written back as they were, so that no branch depends
-        // on the span's length.
-        let lane = i16x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-        let past = lane.simd_gt(i16x8::splat(n as i16 - 1));
-        let keep = if textured {
-            past | t.simd_eq(i16x8::ZERO)
-        } else {
-            past
-        };
-        *dst = cast::<i16x8, u16x8>(keep)
-            .select(u16x8::new(*dst), out)
-            .to_array();
+    if n == LANES {
+        put(vram, start, out, t);
     } else if let Some(dst) = vram.get_mut(start..start + n) {
         let out = out.to_array();
         if textured {
