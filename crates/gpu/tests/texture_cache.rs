@@ -564,10 +564,7 @@ proptest! {
         over_page in any::<bool>(),
     ) {
         let mut g = gpu(over_page);
-        let mut vram: Vec<u16> = g.vram().as_slice().to_vec();
-        let mut cache: HashMap<usize, (usize, [u16; 4])> = HashMap::new();
-        let mut misses = 0u64;
-        let start = g.texture_cache_misses();
+        let mut m = Model::new(&g);
         for s in &steps {
             match *s {
                 Step::Sprite { at, uv, size } => {
@@ -577,38 +574,15 @@ proptest! {
                     for row in (0..size.1).filter(|&r| at.1 + r >= top) {
                         for col in 0..size.0 {
                             let a = (uv.1 + row) as usize * 1024 + (PAGE_X + uv.0 + col) as usize;
-                            let i = ((a >> 2) & 7) | ((a >> 7) & 0xF8);
-                            let tag = a >> 2;
-                            if cache.get(&i).map(|e| e.0) != Some(tag) {
-                                let first = tag * 4;
-                                let h = [vram[first], vram[first + 1], vram[first + 2], vram[first + 3]];
-                                cache.insert(i, (tag, h));
-                                misses += 1;
-                            }
-                            let t = cache[&i].1[a & 3];
-                            let (x, y) = (at.0 + col, at.1 + row);
-                            if t != 0 {
-                                vram[y as usize * 1024 + x as usize] = t;
-                            }
+                            let t = m.read(a, ((a >> 2) & 7) | ((a >> 7) & 0xF8))[a & 3];
+                            m.draw((at.0 + col, at.1 + row), t);
                         }
                     }
                 }
-                Step::Fill { at, size, c } => {
-                    fill(&mut g, c, at, size);
-                    for row in 0..size.1 {
-                        for col in 0..size.0 {
-                            vram[(at.1 + row) as usize * 1024 + (at.0 + col) as usize] = c;
-                        }
-                    }
-                }
-                Step::Clear => {
-                    g.gp0(0x0100_0000);
-                    cache.clear();
-                }
+                _ => m.fill_or_clear(&mut g, s),
             }
         }
-        prop_assert!(g.vram().as_slice() == &vram[..]);
-        prop_assert_eq!(g.texture_cache_misses() - start, misses);
+        m.check(&g)?;
     }
 }
 
@@ -642,10 +616,7 @@ proptest! {
         for (i, &c) in clut.iter().enumerate() {
             g.vram_mut().set_pixel(i, 496, c);
         }
-        let mut vram: Vec<u16> = g.vram().as_slice().to_vec();
-        let mut cache: HashMap<usize, (usize, [u16; 4])> = HashMap::new();
-        let mut misses = 0u64;
-        let start = g.texture_cache_misses();
+        let mut m = Model::new(&g);
         for s in &steps {
             match *s {
                 Step::Sprite { at, uv, size } => {
@@ -655,38 +626,87 @@ proptest! {
                         for col in 0..size.0 {
                             let u = (uv.0 + col) & 255;
                             let a = (uv.1 + row) as usize * 1024 + (PAGE_X + u / 4) as usize;
-                            let i = ((a >> 2) & 3) | ((a >> 8) & 0xFC);
-                            let tag = a >> 2;
-                            if cache.get(&i).map(|e| e.0) != Some(tag) {
-                                let first = tag * 4;
-                                let h = [vram[first], vram[first + 1], vram[first + 2], vram[first + 3]];
-                                cache.insert(i, (tag, h));
-                                misses += 1;
-                            }
-                            let t = clut[usize::from(cache[&i].1[a & 3] >> (4 * (u & 3)) & 0xF)];
-                            let (x, y) = (at.0 + col, at.1 + row);
-                            if t != 0 {
-                                vram[y as usize * 1024 + x as usize] = t;
-                            }
+                            let h = m.read(a, ((a >> 2) & 3) | ((a >> 8) & 0xFC))[a & 3];
+                            m.draw((at.0 + col, at.1 + row), clut[usize::from(h >> (4 * (u & 3)) & 0xF)]);
                         }
                     }
                 }
-                Step::Fill { at, size, c } => {
-                    fill(&mut g, c, at, size);
-                    for row in 0..size.1 {
-                        for col in 0..size.0 {
-                            vram[(at.1 + row) as usize * 1024 + (at.0 + col) as usize] = c;
-                        }
-                    }
-                }
-                Step::Clear => {
-                    g.gp0(0x0100_0000);
-                    cache.clear();
-                }
+                _ => m.fill_or_clear(&mut g, s),
             }
         }
-        prop_assert!(g.vram().as_slice() == &vram[..]);
-        prop_assert_eq!(g.texture_cache_misses() - start, misses);
+        m.check(&g)?;
+    }
+}
+
+/// The fact-sheet model of §10 the sprite property tests hold the GPU to: VRAM as it should
+/// be, the cache's entries (index -> tag a / 4 and the four halfwords loaded on a miss) and
+/// the misses counted since the model was made.
+struct Model {
+    vram: Vec<u16>,
+    cache: HashMap<usize, (usize, [u16; 4])>,
+    misses: u64,
+    start: u64,
+}
+
+impl Model {
+    fn new(g: &Gpu) -> Model {
+        Model {
+            vram: g.vram().as_slice().to_vec(),
+            cache: HashMap::new(),
+            misses: 0,
+            start: g.texture_cache_misses(),
+        }
+    }
+
+    /// The halfwords of the entry `i` that holds VRAM address `a`, loaded on a miss.
+    fn read(&mut self, a: usize, i: usize) -> [u16; 4] {
+        let tag = a >> 2;
+        if self.cache.get(&i).map(|e| e.0) != Some(tag) {
+            let f = tag * 4;
+            let h = [
+                self.vram[f],
+                self.vram[f + 1],
+                self.vram[f + 2],
+                self.vram[f + 3],
+            ];
+            self.cache.insert(i, (tag, h));
+            self.misses += 1;
+        }
+        self.cache[&i].1
+    }
+
+    /// A sprite pixel at (x, y): texel value 0000h leaves it as it is (§6).
+    fn draw(&mut self, (x, y): (u32, u32), t: u16) {
+        if t != 0 {
+            self.vram[y as usize * 1024 + x as usize] = t;
+        }
+    }
+
+    /// A fill (on the GPU and in the model's VRAM, the cache untouched) or a GP0(01h), which
+    /// empties the cache.
+    fn fill_or_clear(&mut self, g: &mut Gpu, s: &Step) {
+        match *s {
+            Step::Fill { at, size, c } => {
+                fill(g, c, at, size);
+                for row in 0..size.1 {
+                    for col in 0..size.0 {
+                        self.vram[(at.1 + row) as usize * 1024 + (at.0 + col) as usize] = c;
+                    }
+                }
+            }
+            Step::Clear => {
+                g.gp0(0x0100_0000);
+                self.cache.clear();
+            }
+            Step::Sprite { .. } => {}
+        }
+    }
+
+    /// The GPU's VRAM and misses against the model's.
+    fn check(&self, g: &Gpu) -> Result<(), TestCaseError> {
+        prop_assert!(g.vram().as_slice() == &self.vram[..]);
+        prop_assert_eq!(g.texture_cache_misses() - self.start, self.misses);
+        Ok(())
     }
 }
 
