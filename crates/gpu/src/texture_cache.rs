@@ -60,6 +60,18 @@ pub(crate) const fn tag_of(address: usize) -> u32 {
 /// Reads worked out eight at a time ([`TextureCache::track_lanes`]).
 const LANES: usize = 8;
 
+/// The lanes of eight whose bit is clear in a mask of eight bits, by mask: the misses of a
+/// group of eight reads whose hits are the mask's set bits.
+const MISSED_LANES: [u8; 1 << LANES] = {
+    let mut t = [0; 1 << LANES];
+    let mut m = 0;
+    while m < t.len() {
+        t[m] = (LANES as u32 - (m as u32).count_ones()) as u8;
+        m += 1;
+    }
+    t
+};
+
 /// Whether the reads of a span of a texture of kind `TEX` (1 = 4-bit, 2 = 8-bit, 3 =
 /// 15-bit), whose texel coordinates step by `(du, dv)` per pixel (8.24, two's complement),
 /// step slowly: a pixel moves by at most a quarter of an entry's width in U plus lines in V.
@@ -476,10 +488,21 @@ impl TextureCache {
     /// Reads, with the copies not kept ([`mode::TAGS`]), of the halfwords at the first `n`
     /// (at most 8) of the eight `address`es (below `VRAM_LEN`), in lane order: the misses
     /// and the tags left are those of reading the `n` halfwords one by one
-    /// (docs/hardware/gpu.md §10). Each read stores its tag and counts a miss without a
-    /// branch: texels that jump from entry to entry make a miss as likely as a hit.
+    /// (docs/hardware/gpu.md §10). No read branches on whether it hits: texels that jump
+    /// from entry to entry make a miss as likely as a hit.
     #[inline(always)]
     pub(crate) fn track_lanes<const TEX: u8>(&mut self, address: wide::u32x8, n: usize) {
+        if n >= LANES {
+            self.track_group::<TEX>(address);
+        } else {
+            self.track_some_lanes::<TEX>(address, n);
+        }
+    }
+
+    /// [`TextureCache::track_lanes`] of the first `n` lanes, fewer than eight: each read
+    /// stores its tag and counts a miss.
+    #[inline(always)]
+    pub(crate) fn track_some_lanes<const TEX: u8>(&mut self, address: wide::u32x8, n: usize) {
         let tag = (address >> 2u32).to_array();
         let entry = entry_index_lanes::<TEX>(address).to_array();
         let mut misses = 0;
@@ -489,6 +512,26 @@ impl TextureCache {
             *t = tag;
         }
         self.misses = self.misses.wrapping_add(misses);
+    }
+
+    /// [`TextureCache::track_lanes`] of all eight lanes. The tags the reads find are gathered
+    /// as they are replaced, lane by lane (a lane whose entry an earlier lane of the group
+    /// used finds that lane's tag, docs/hardware/gpu.md §10), and compared with the reads'
+    /// tags eight at a time.
+    #[inline(always)]
+    pub(crate) fn track_group<const TEX: u8>(&mut self, address: wide::u32x8) {
+        let tags = address >> 2u32;
+        let tag = tags.to_array();
+        let entry = entry_index_lanes::<TEX>(address).to_array();
+        let mut found = [0; LANES];
+        for ((f, &i), &tag) in found.iter_mut().zip(&entry).zip(&tag) {
+            let t = &mut self.tags[i as usize & (ENTRIES - 1)];
+            *f = *t;
+            *t = tag;
+        }
+        let hits = wide::u32x8::new(found).simd_eq(tags).to_bitmask();
+        let misses = MISSED_LANES[hits as usize & (MISSED_LANES.len() - 1)];
+        self.misses = self.misses.wrapping_add(u32::from(misses));
     }
 
     /// [`TextureCache::track_lanes`] for the next reads of `span`, a span whose texels step

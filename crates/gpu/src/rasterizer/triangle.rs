@@ -1228,7 +1228,11 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
             });
         } else {
             raw15_groups::<BLEND, MASK_CHECK>(vram, span, (mask_or, blend), move |a, n| {
-                cache.track_lanes::<3>(a, n);
+                if n == LANES {
+                    cache.track_group::<3>(a);
+                } else {
+                    cache.track_some_lanes::<3>(a, n);
+                }
             });
         }
         return;
@@ -1254,7 +1258,7 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
 /// past the span, left unread as 0000h) keeping the pixel's value (docs/hardware/gpu.md §6).
 /// The group's reads then come before its writes, which pixel by pixel they do not: the two
 /// agree because with the tags tracked and no copies kept the page lies clear of the drawing
-/// area (`TextureCache::prepare`).
+/// area (`TextureCache::prepare`). The span's whole groups come first, then the pixels left.
 #[inline(always)]
 fn raw15_groups<const BLEND: bool, const MASK_CHECK: bool>(
     vram: &mut [u16; VRAM_LEN],
@@ -1263,40 +1267,72 @@ fn raw15_groups<const BLEND: bool, const MASK_CHECK: bool>(
     mut track: impl FnMut(wide::u32x8, usize),
 ) {
     let steps = span::PlainReads::steps((du, dv));
+    let (step_u, step_v) = (du.wrapping_mul(8), dv.wrapping_mul(8));
     let mut x = x_start;
-    while x < x_end {
+    while x_end - x >= LANES as i32 {
         let r = span::PlainReads::new::<3>(page, (u, v), &steps);
-        let n = ((x_end - x) as usize).min(LANES);
-        track(r.lanes, n);
-        let at = row + x as usize;
-        let mut texels = [0; LANES];
-        for (t, &a) in texels.iter_mut().zip(&r.address).take(n) {
-            *t = vram[a as usize & (VRAM_LEN - 1)];
+        raw15_group::<BLEND, MASK_CHECK>(
+            vram,
+            row + x as usize,
+            &r,
+            LANES,
+            (mask_or, blend),
+            &mut track,
+        );
+        u = u.wrapping_add(step_u);
+        v = v.wrapping_add(step_v);
+        x += LANES as i32;
+    }
+    if x < x_end {
+        let r = span::PlainReads::new::<3>(page, (u, v), &steps);
+        let n = (x_end - x) as usize;
+        raw15_group::<BLEND, MASK_CHECK>(
+            vram,
+            row + x as usize,
+            &r,
+            n,
+            (mask_or, blend),
+            &mut track,
+        );
+    }
+}
+
+/// One group of [`raw15_groups`]: the first `n` (at most eight) of the reads `r`, written
+/// from VRAM index `at` on.
+#[inline(always)]
+fn raw15_group<const BLEND: bool, const MASK_CHECK: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    at: usize,
+    r: &span::PlainReads,
+    n: usize,
+    (mask_or, blend): (u16, BlendMode),
+    track: &mut impl FnMut(wide::u32x8, usize),
+) {
+    track(r.lanes, n);
+    let mut texels = [0; LANES];
+    for (t, &a) in texels.iter_mut().zip(&r.address).take(n) {
+        *t = vram[a as usize & (VRAM_LEN - 1)];
+    }
+    match vram
+        .get_mut(at..)
+        .and_then(|d| d.first_chunk_mut::<LANES>())
+    {
+        Some(dst) if !BLEND && !MASK_CHECK => {
+            let t = wide::u16x8::new(texels);
+            let keep = t.simd_eq(wide::u16x8::ZERO);
+            let out = t | wide::u16x8::splat(mask_or);
+            *dst = keep.bitselect(wide::u16x8::new(*dst), out).to_array();
         }
-        match vram
-            .get_mut(at..)
-            .and_then(|d| d.first_chunk_mut::<LANES>())
-        {
-            Some(dst) if !BLEND && !MASK_CHECK => {
-                let t = wide::u16x8::new(texels);
-                let keep = t.simd_eq(wide::u16x8::ZERO);
-                let out = t | wide::u16x8::splat(mask_or);
-                *dst = keep.bitselect(wide::u16x8::new(*dst), out).to_array();
-            }
-            _ => {
-                for (k, &texel) in texels.iter().enumerate().take(n) {
-                    let e = if texel == 0 {
-                        0
-                    } else {
-                        0x1_0000 | u32::from(texel)
-                    };
-                    super::write_shaded::<BLEND, MASK_CHECK>(vram, at + k, e, mask_or, blend);
-                }
+        _ => {
+            for (k, &texel) in texels.iter().enumerate().take(n) {
+                let e = if texel == 0 {
+                    0
+                } else {
+                    0x1_0000 | u32::from(texel)
+                };
+                super::write_shaded::<BLEND, MASK_CHECK>(vram, at + k, e, mask_or, blend);
             }
         }
-        u = u.wrapping_add(du.wrapping_mul(8));
-        v = v.wrapping_add(dv.wrapping_mul(8));
-        x += 8;
     }
 }
 
