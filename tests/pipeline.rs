@@ -161,7 +161,8 @@ fn four_bit_texture_round_trips_through_vram() {
     let img = image::RgbaImage::from_fn(32, 16, |x, y| {
         image::Rgba(palette[((x / 2 + y) % 16) as usize])
     });
-    let path = std::env::temp_dir().join(format!("wobble-16c-{}.png", std::process::id()));
+    let scratch = wobble_suite::Scratch::new("four_bit_texture_round_trips_through_vram");
+    let path = scratch.join("16c.png");
     img.save(&path).unwrap();
     let texture = Texture::load_png(&path, TextureDepth::Clut4).unwrap();
     let mut s = scene(vec![square()], vec![]);

@@ -1,6 +1,9 @@
 //! The `wobble` binary on the fixtures and on bad input.
 
-use std::path::PathBuf;
+mod common;
+
+use common::Scratch;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn wobble(args: &[&str]) -> Output {
@@ -12,12 +15,6 @@ fn wobble(args: &[&str]) -> Output {
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("wobble-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
 }
 
 fn stdout(o: &Output) -> String {
@@ -34,12 +31,13 @@ fn gte_replay_hardware_vectors() {
 
 #[test]
 fn gte_replay_reports_failures_and_bad_lines() {
+    let scratch = Scratch::new("gte_replay_reports_failures_and_bad_lines");
     let zeros = format!("[{}]", vec!["0"; 32].join(","));
     // A register-only vector expecting all zeros fails on LZCR (reads 32 for LZCS = 0).
     let text = format!(
         "{{\"name\":\"z\",\"cmd\":null,\"in_data\":{zeros},\"in_ctrl\":{zeros},\"out_data\":{zeros},\"out_ctrl\":{zeros}}}\nnot json\n"
     );
-    let f = tmp("bad.jsonl");
+    let f = scratch.join("bad.jsonl");
     std::fs::write(&f, text).unwrap();
     let o = wobble(&["gte", "replay", f.to_str().unwrap()]);
     assert!(!o.status.success());
@@ -52,7 +50,8 @@ fn gte_replay_reports_failures_and_bad_lines() {
 
 #[test]
 fn gte_replay_emit_is_json() {
-    let f = tmp("emit.jsonl");
+    let scratch = Scratch::new("gte_replay_emit_is_json");
+    let f = scratch.join("emit.jsonl");
     std::fs::write(
         &f,
         "{\"name\":\"w\",\"cmd\":null,\"writes\":[[30,4294967295]]}\n",
@@ -67,9 +66,10 @@ fn gte_replay_emit_is_json() {
 
 #[test]
 fn replay_writes_png_and_raw() {
+    let scratch = Scratch::new("replay_writes_png_and_raw");
     let stream = root().join("fixtures/gpu/quad.gpu");
-    let png = tmp("quad.png");
-    let raw = tmp("quad.vram.bin");
+    let png = scratch.join("quad.png");
+    let raw = scratch.join("quad.vram.bin");
     let o = wobble(&[
         "replay",
         stream.to_str().unwrap(),
@@ -93,13 +93,14 @@ fn replay_writes_png_and_raw() {
 
 #[test]
 fn replay_names_bad_line() {
-    let f = tmp("bad.gpu");
+    let scratch = Scratch::new("replay_names_bad_line");
+    let f = scratch.join("bad.gpu");
     std::fs::write(&f, "gp0 e1000000\ngp9 1\n").unwrap();
     let o = wobble(&[
         "replay",
         f.to_str().unwrap(),
         "-o",
-        tmp("x.png").to_str().unwrap(),
+        scratch.join("x.png").to_str().unwrap(),
     ]);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
@@ -109,7 +110,7 @@ fn replay_names_bad_line() {
 /// A hand-built raw VRAM: pixel (0,0) = red 31, (1,0) = green 16; a 4-bit texture page at
 /// (64,0) whose first halfword 0021h holds indices 1, 2, 0, 0 and a CLUT at (0,1) with
 /// entry 1 = blue 31, entry 2 = 7FFFh (white).
-fn raw_vram() -> PathBuf {
+fn raw_vram(dir: &Path) -> PathBuf {
     let mut v = vec![0u16; 1024 * 512];
     v[0] = 0x001F;
     v[1] = 16 << 5;
@@ -117,18 +118,16 @@ fn raw_vram() -> PathBuf {
     v[1024 + 1] = 0x7C00;
     v[1024 + 2] = 0x7FFF;
     let bytes: Vec<u8> = v.iter().flat_map(|p| p.to_le_bytes()).collect();
-    // Written whole under its name (tests running at once read it).
-    let f = tmp("hand.vram.bin");
-    let part = tmp(&format!("hand.vram.bin.{:?}", std::thread::current().id()));
-    std::fs::write(&part, bytes).unwrap();
-    std::fs::rename(&part, &f).unwrap();
+    let f = dir.join("hand.vram.bin");
+    std::fs::write(&f, bytes).unwrap();
     f
 }
 
 #[test]
 fn dump_whole_and_display() {
-    let raw = raw_vram();
-    let png = tmp("dump.png");
+    let scratch = Scratch::new("dump_whole_and_display");
+    let raw = raw_vram(&scratch);
+    let png = scratch.join("dump.png");
     let o = wobble(&["dump", raw.to_str().unwrap(), "-o", png.to_str().unwrap()]);
     assert!(o.status.success());
     let img = image::open(&png).unwrap().to_rgb8();
@@ -152,8 +151,9 @@ fn dump_whole_and_display() {
 
 #[test]
 fn dump_texture_page() {
-    let raw = raw_vram();
-    let png = tmp("page.png");
+    let scratch = Scratch::new("dump_texture_page");
+    let raw = raw_vram(&scratch);
+    let png = scratch.join("page.png");
     let o = wobble(&[
         "dump",
         raw.to_str().unwrap(),
@@ -180,13 +180,14 @@ fn dump_texture_page() {
 
 #[test]
 fn dump_rejects_wrong_size() {
-    let f = tmp("short.bin");
+    let scratch = Scratch::new("dump_rejects_wrong_size");
+    let f = scratch.join("short.bin");
     std::fs::write(&f, [0u8; 100]).unwrap();
     let o = wobble(&[
         "dump",
         f.to_str().unwrap(),
         "-o",
-        tmp("y.png").to_str().unwrap(),
+        scratch.join("y.png").to_str().unwrap(),
     ]);
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("got 100"));
@@ -199,9 +200,10 @@ fn stderr(o: &Output) -> String {
 /// `dump` refuses arguments that would be ignored or are out of range, saying why.
 #[test]
 fn dump_argument_errors() {
-    let raw = raw_vram();
+    let scratch = Scratch::new("dump_argument_errors");
+    let raw = raw_vram(&scratch);
     let raw = raw.to_str().unwrap();
-    let png = tmp("dump-args.png");
+    let png = scratch.join("dump-args.png");
     let png = png.to_str().unwrap();
     let o = wobble(&[
         "dump",
@@ -245,8 +247,9 @@ fn dump_argument_errors() {
 /// pixel the hand-made VRAM's green pixel at (1,0).
 #[test]
 fn dump_display_implies_the_region() {
-    let raw = raw_vram();
-    let png = tmp("dump-display.png");
+    let scratch = Scratch::new("dump_display_implies_the_region");
+    let raw = raw_vram(&scratch);
+    let png = scratch.join("dump-display.png");
     let o = wobble(&[
         "dump",
         raw.to_str().unwrap(),
@@ -264,7 +267,8 @@ fn dump_display_implies_the_region() {
 /// `-o` picks the image format from the extension, or refuses with the list.
 #[test]
 fn output_format_from_extension() {
-    let raw = raw_vram();
+    let scratch = Scratch::new("output_format_from_extension");
+    let raw = raw_vram(&scratch);
     let raw = raw.to_str().unwrap();
     for (ext, format) in [
         ("bmp", image::ImageFormat::Bmp),
@@ -273,7 +277,7 @@ fn output_format_from_extension() {
         ("gif", image::ImageFormat::Gif),
         ("PNG", image::ImageFormat::Png),
     ] {
-        let out = tmp(&format!("fmt.{ext}"));
+        let out = scratch.join(format!("fmt.{ext}"));
         let o = wobble(&["dump", raw, "-o", out.to_str().unwrap()]);
         assert!(o.status.success(), "{ext}: {}", stderr(&o));
         let bytes = std::fs::read(&out).unwrap();
@@ -290,7 +294,7 @@ fn output_format_from_extension() {
         }
     }
     for name in ["out.txt", "out.jpg", "noextension"] {
-        let out = tmp(name);
+        let out = scratch.join(name);
         let o = wobble(&["dump", raw, "-o", out.to_str().unwrap()]);
         assert!(!o.status.success(), "{name}");
         let e = stderr(&o);
@@ -303,6 +307,7 @@ fn output_format_from_extension() {
 /// written, and nothing is left behind.
 #[test]
 fn replay_checks_outputs_before_writing() {
+    let scratch = Scratch::new("replay_checks_outputs_before_writing");
     let stream = root()
         .join("fixtures/gpu")
         .read_dir()
@@ -312,7 +317,7 @@ fn replay_checks_outputs_before_writing() {
             (p.extension()? == "gpu").then_some(p)
         });
     let stream = stream.expect("a .gpu fixture");
-    let dir = tmp("replay-check");
+    let dir = scratch.join("replay-check");
     std::fs::create_dir_all(&dir).unwrap();
     let png = dir.join("out.png");
     let _ = std::fs::remove_file(&png);
@@ -335,6 +340,7 @@ fn replay_checks_outputs_before_writing() {
 /// stderr with the line where the unfinished input started.
 #[test]
 fn replay_warns_on_unfinished_stream() {
+    let scratch = Scratch::new("replay_warns_on_unfinished_stream");
     let cases = [
         // Line 2: a flat triangle (GP0 20h, 4 words) given only 2.
         (
@@ -352,9 +358,9 @@ fn replay_warns_on_unfinished_stream() {
         ("gp0 48FFFFFF 00000000 00100010\n", "polyline", "line 1"),
     ];
     for (i, (text, what, line)) in cases.iter().enumerate() {
-        let stream = tmp(&format!("unfinished{i}.gpu"));
+        let stream = scratch.join(format!("unfinished{i}.gpu"));
         std::fs::write(&stream, text).unwrap();
-        let png = tmp(&format!("unfinished{i}.png"));
+        let png = scratch.join(format!("unfinished{i}.png"));
         let o = wobble(&[
             "replay",
             stream.to_str().unwrap(),
@@ -368,9 +374,9 @@ fn replay_warns_on_unfinished_stream() {
             "case {i}: {e}"
         );
     }
-    let stream = tmp("finished.gpu");
+    let stream = scratch.join("finished.gpu");
     std::fs::write(&stream, "gp0 20FF0000 00000000 00100000 00000010\n").unwrap();
-    let png = tmp("finished.png");
+    let png = scratch.join("finished.png");
     let o = wobble(&[
         "replay",
         stream.to_str().unwrap(),
@@ -389,6 +395,7 @@ fn replay_warns_on_unfinished_stream() {
 /// 31 as 255 where the capture tool wrote 248).
 #[test]
 fn replay_reproduces_every_capture_with_expand_shift() {
+    let scratch = Scratch::new("replay_reproduces_every_capture_with_expand_shift");
     let mut names: Vec<String> = std::fs::read_dir(root().join("fixtures/gpu"))
         .unwrap()
         .filter_map(|e| {
@@ -404,7 +411,7 @@ fn replay_reproduces_every_capture_with_expand_shift() {
             .unwrap()
             .to_rgb8();
         for (expand, equal) in [("shift", true), ("replicate", false)] {
-            let png = tmp(&format!("capture-{name}-{expand}.png"));
+            let png = scratch.join(format!("capture-{name}-{expand}.png"));
             let o = wobble(&[
                 "replay",
                 stream.to_str().unwrap(),
@@ -426,14 +433,15 @@ fn replay_reproduces_every_capture_with_expand_shift() {
 /// time is printed in CPU cycles, hblanks and milliseconds (33.8688 MHz).
 #[test]
 fn replay_timing_prints_the_gpu_time() {
-    let stream = tmp("timing-fill.gpu");
+    let scratch = Scratch::new("replay_timing_prints_the_gpu_time");
+    let stream = scratch.join("timing-fill.gpu");
     std::fs::write(&stream, "gp0 e3000000 e407ffff\ngp0 02000000 0 00f00140\n").unwrap();
     let o = wobble(&[
         "replay",
         "--timing",
         stream.to_str().unwrap(),
         "-o",
-        tmp("timing-fill.png").to_str().unwrap(),
+        scratch.join("timing-fill.png").to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
@@ -457,13 +465,14 @@ fn replay_timing_prints_the_gpu_time() {
 /// prints what timer 1 counted; the console counted 1216 hblanks (psx.log, f727802).
 #[test]
 fn replay_timing_reports_a_timed_stream() {
+    let scratch = Scratch::new("replay_timing_reports_a_timed_stream");
     let stream = root().join("fixtures/gpu/bandwidth/fill.gpu");
     let o = wobble(&[
         "replay",
         "--timing",
         stream.to_str().unwrap(),
         "-o",
-        tmp("bandwidth-fill.png").to_str().unwrap(),
+        scratch.join("bandwidth-fill.png").to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = stdout(&o);
@@ -483,7 +492,7 @@ fn replay_timing_reports_a_timed_stream() {
         "replay",
         stream.to_str().unwrap(),
         "-o",
-        tmp("bandwidth-fill2.png").to_str().unwrap(),
+        scratch.join("bandwidth-fill2.png").to_str().unwrap(),
     ]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--timing"), "{}", stderr(&o));
@@ -499,7 +508,8 @@ fn replay_timing_reports_a_timed_stream() {
 /// and line 1 gets the stale 7C1Fh; without it, the fill's 03E0h (docs/hardware/gpu.md §10).
 #[test]
 fn replay_without_the_texture_cache_shows_no_stale_texels() {
-    let stream = tmp("stale.gpu");
+    let scratch = Scratch::new("replay_without_the_texture_cache_shows_no_stale_texels");
+    let stream = scratch.join("stale.gpu");
     std::fs::write(
         &stream,
         "gp1 00000000\ngp0 e3000000\ngp0 e407ffff\ngp0 e5000000\n\
@@ -511,7 +521,7 @@ fn replay_without_the_texture_cache_shows_no_stale_texels() {
     )
     .unwrap();
     let line1 = |extra: &[&str]| {
-        let raw = tmp(&format!("stale{}.bin", extra.len()));
+        let raw = scratch.join(format!("stale{}.bin", extra.len()));
         let mut args = vec![
             "replay",
             stream.to_str().unwrap(),

@@ -3,6 +3,9 @@
 //! replayed, inspected and dumped; `convert` round-trips between text and dumps, compressed
 //! or not; errors name the format expected.
 
+mod common;
+
+use common::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -29,12 +32,6 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("wobble-cli-dump-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()
 }
@@ -55,10 +52,11 @@ fn rgb(path: &Path) -> image::RgbImage {
 /// every frame's PNG is the one `render --png-dir` wrote; the GIF holds one frame each.
 #[test]
 fn recorded_render_replays_to_the_same_frames() {
+    let scratch = Scratch::new("recorded_render_replays_to_the_same_frames");
     let frames = 12;
-    let rendered = tmp("rendered");
-    let replayed = tmp("replayed");
-    let dump = tmp("anim.psxgpu.zst");
+    let rendered = scratch.join("rendered");
+    let replayed = scratch.join("replayed");
+    let dump = scratch.join("anim.psxgpu.zst");
     ok(&[
         "render",
         "--frames",
@@ -66,7 +64,7 @@ fn recorded_render_replays_to_the_same_frames() {
         "--png-dir",
         s(&rendered),
         "-o",
-        s(&tmp("last.png")),
+        s(&scratch.join("last.png")),
         "--record",
         s(&dump),
         "--dialect",
@@ -80,7 +78,7 @@ fn recorded_render_replays_to_the_same_frames() {
         "--png-dir",
         s(&replayed),
         "-o",
-        s(&tmp("anim.gif")),
+        s(&scratch.join("anim.gif")),
     ]);
     let text = out(&o);
     assert!(
@@ -98,7 +96,7 @@ fn recorded_render_replays_to_the_same_frames() {
             "frame {f}"
         );
     }
-    let gif = std::fs::File::open(tmp("anim.gif")).unwrap();
+    let gif = std::fs::File::open(scratch.join("anim.gif")).unwrap();
     let decoder = image::codecs::gif::GifDecoder::new(std::io::BufReader::new(gif)).unwrap();
     let gif_frames = image::AnimationDecoder::into_frames(decoder)
         .collect_frames()
@@ -144,7 +142,8 @@ fn duckstation_dump() -> Vec<u8> {
 
 #[test]
 fn hand_built_duckstation_dump_lists_replays_inspects() {
-    let dump = tmp("hand.psxgpu");
+    let scratch = Scratch::new("hand_built_duckstation_dump_lists_replays_inspects");
+    let dump = scratch.join("hand.psxgpu");
     std::fs::write(&dump, duckstation_dump()).unwrap();
     let o = ok(&["replay", s(&dump), "--list"]);
     let text = out(&o);
@@ -167,26 +166,26 @@ fn hand_built_duckstation_dump_lists_replays_inspects() {
         "{text}"
     );
     // Frame 0 shows red at (0, 0); frame 1 green from line 4 (fill X is a multiple of 16).
-    let f0 = tmp("hand0.png");
+    let f0 = scratch.join("hand0.png");
     ok(&["replay", s(&dump), "--frame", "0", "-o", s(&f0)]);
     let img = rgb(&f0);
     assert_eq!(img.dimensions(), (320, 240));
     assert_eq!(img.get_pixel(0, 0).0, [255, 0, 0]);
     assert_eq!(img.get_pixel(4, 4).0, [255, 0, 0]);
-    let f1 = tmp("hand1.png");
+    let f1 = scratch.join("hand1.png");
     ok(&["replay", s(&dump), "--frame", "1", "-o", s(&f1)]);
     let img = rgb(&f1);
     assert_eq!(img.get_pixel(0, 0).0, [255, 0, 0]);
     assert_eq!(img.get_pixel(4, 4).0, [0, 255, 0]);
     // `dump` takes the VRAM at a frame.
-    let v = tmp("hand-vram.png");
+    let v = scratch.join("hand-vram.png");
     ok(&["dump", s(&dump), "--frame", "1", "-o", s(&v)]);
     let img = rgb(&v);
     assert_eq!(img.dimensions(), (1024, 512));
     assert_eq!(img.get_pixel(15, 19).0, [0, 255, 0]);
     assert_eq!(img.get_pixel(16, 19).0, [0, 0, 0]);
     // The inspector on frame 1: its three packets, listed by packet number.
-    let report = tmp("hand-report");
+    let report = scratch.join("hand-report");
     let o = ok(&["inspect", s(&dump), "--frame", "1", "-o", s(&report)]);
     assert!(out(&o).starts_with("2 commands"), "{}", out(&o));
     assert!(err(&o).contains("4 GPUREAD words"), "{}", err(&o));
@@ -201,7 +200,14 @@ fn hand_built_duckstation_dump_lists_replays_inspects() {
         "{chunk}"
     );
     // Frames past the end are refused with the count.
-    let o = wobble(&["replay", s(&dump), "--frame", "2", "-o", s(&tmp("x.png"))]);
+    let o = wobble(&[
+        "replay",
+        s(&dump),
+        "--frame",
+        "2",
+        "-o",
+        s(&scratch.join("x.png")),
+    ]);
     assert!(
         !o.status.success() && err(&o).contains("it has 2 frame(s) (0..=1)"),
         "{}",
@@ -213,12 +219,13 @@ fn hand_built_duckstation_dump_lists_replays_inspects() {
 /// VRAM replayed from each equals the fixture's; the second text equals the first.
 #[test]
 fn convert_round_trips() {
+    let scratch = Scratch::new("convert_round_trips");
     let quad = fixture("quad.gpu");
-    let dump = tmp("quad.psxgpu");
-    let text = tmp("quad-back.gpu");
-    let text2 = tmp("quad-back2.gpu");
-    let xz = tmp("quad.psxgpu.xz");
-    let zst = tmp("quad.psxgpu.zst");
+    let dump = scratch.join("quad.psxgpu");
+    let text = scratch.join("quad-back.gpu");
+    let text2 = scratch.join("quad-back2.gpu");
+    let xz = scratch.join("quad.psxgpu.xz");
+    let zst = scratch.join("quad.psxgpu.zst");
     ok(&["convert", s(&quad), s(&dump)]);
     assert!(
         std::fs::read(&dump)
@@ -234,14 +241,14 @@ fn convert_round_trips() {
     let t2 = std::fs::read_to_string(&text2).unwrap();
     assert_eq!(t1, t2);
     let raw = |input: &Path, name: &str| {
-        let r = tmp(name);
+        let r = scratch.join(name);
         ok(&[
             "replay",
             s(input),
             "--region",
             "vram",
             "-o",
-            s(&tmp(&format!("{name}.png"))),
+            s(&scratch.join(format!("{name}.png"))),
             "--raw",
             s(&r),
         ]);
@@ -257,15 +264,15 @@ fn convert_round_trips() {
         assert!(raw(input, name) == expected, "{}", input.display());
     }
     // The DuckStation file has the 14-byte magic once decompressed: check via text.
-    let o = ok(&["convert", s(&xz), s(&tmp("ds.psxgpu"))]);
+    let o = ok(&["convert", s(&xz), s(&scratch.join("ds.psxgpu"))]);
     assert!(out(&o).contains("DuckStation dialect"), "{}", out(&o));
     assert!(
-        std::fs::read(tmp("ds.psxgpu"))
+        std::fs::read(scratch.join("ds.psxgpu"))
             .unwrap()
             .starts_with(b"PSXGPUDUMPv1\0\0")
     );
     // Unknown output names are refused with the list.
-    let o = wobble(&["convert", s(&quad), s(&tmp("x.bin"))]);
+    let o = wobble(&["convert", s(&quad), s(&scratch.join("x.bin"))]);
     assert!(
         !o.status.success() && err(&o).contains(".psxgpu.zst"),
         "{}",
@@ -277,7 +284,8 @@ fn convert_round_trips() {
 /// dump names the byte.
 #[test]
 fn wrong_inputs_name_the_format() {
-    let dump = tmp("bin.psxgpu");
+    let scratch = Scratch::new("wrong_inputs_name_the_format");
+    let dump = scratch.join("bin.psxgpu");
     std::fs::write(&dump, duckstation_dump()).unwrap();
     let o = wobble(&["gte", "replay", s(&dump)]);
     assert!(
@@ -290,7 +298,7 @@ fn wrong_inputs_name_the_format() {
     let o = wobble(&["render", s(&dump)]);
     assert!(err(&o).contains("not a scene file (TOML"), "{}", err(&o));
     let png = fixture("quad.vram.png");
-    let o = wobble(&["replay", s(&png), "-o", s(&tmp("p.png"))]);
+    let o = wobble(&["replay", s(&png), "-o", s(&scratch.join("p.png"))]);
     assert!(
         err(&o).contains("not a GPU command stream (.gpu text) or a GPU dump")
             && err(&o).contains("binary (a PNG image"),
@@ -299,17 +307,17 @@ fn wrong_inputs_name_the_format() {
     );
     let mut cut = duckstation_dump();
     cut.truncate(cut.len() - 6);
-    let damaged = tmp("cut.psxgpu");
+    let damaged = scratch.join("cut.psxgpu");
     std::fs::write(&damaged, cut).unwrap();
-    let o = wobble(&["replay", s(&damaged), "-o", s(&tmp("c.png"))]);
+    let o = wobble(&["replay", s(&damaged), "-o", s(&scratch.join("c.png"))]);
     assert!(
         !o.status.success() && err(&o).contains("byte ") && err(&o).contains("only"),
         "{}",
         err(&o)
     );
-    let text = tmp("text.psxgpu");
+    let text = scratch.join("text.psxgpu");
     std::fs::write(&text, "garbage\n").unwrap();
-    let o = wobble(&["replay", s(&text), "-o", s(&tmp("t.png"))]);
+    let o = wobble(&["replay", s(&text), "-o", s(&scratch.join("t.png"))]);
     assert!(
         !o.status.success()
             && err(&o).contains("not a GPU dump (it does not start with `PSXGPUDUMP`)")
@@ -317,7 +325,7 @@ fn wrong_inputs_name_the_format() {
         "{}",
         err(&o)
     );
-    let fake = tmp("fake.psxgpu.zst");
+    let fake = scratch.join("fake.psxgpu.zst");
     std::fs::write(&fake, "gp0 1\n").unwrap();
     let o = wobble(&["replay", s(&fake)]);
     assert!(

@@ -1,5 +1,8 @@
 //! `wobble inspect` and `wobble render --inspect` from the command line.
 
+mod common;
+
+use common::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -9,16 +12,10 @@ fn fixture(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("wobble-cli-inspect-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
 #[test]
 fn command_line() {
-    let dir = out_dir("cli");
+    let scratch = Scratch::new("command_line");
+    let dir = scratch.join("report");
     let out = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args(["inspect", fixture("triangle.gpu").to_str().unwrap(), "-o"])
         .arg(&dir)
@@ -45,14 +42,12 @@ fn command_line() {
         .unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("line 2"));
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
 fn render_inspect() {
-    let dir = out_dir("render");
+    let dir = Scratch::new("render_inspect");
     let png = dir.join("frame.png");
-    std::fs::create_dir_all(&dir).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args(["render", "--frames", "2", "--inspect"])
         .arg(dir.join("report"))
@@ -84,5 +79,4 @@ fn render_inspect() {
         "`accuracy-knobs`"
     };
     assert!(String::from_utf8_lossy(&out.stderr).contains(why));
-    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -2,13 +2,14 @@
 //! feature, refused with an error naming it without (`cargo test -p wobble-cli
 //! --no-default-features`).
 
-use std::path::PathBuf;
+mod common;
+
+use common::Scratch;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn render(name: &str, extra: &[&str]) -> Output {
+fn render(dir: &Path, name: &str, extra: &[&str]) -> Output {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let dir = std::env::temp_dir().join(format!("wobble-knobs-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join(format!("{name}.png"));
     Command::new(env!("CARGO_BIN_EXE_wobble"))
         .arg("render")
@@ -22,6 +23,7 @@ fn render(name: &str, extra: &[&str]) -> Output {
 
 #[test]
 fn non_hardware_options_need_the_feature() {
+    let scratch = Scratch::new("non_hardware_options_need_the_feature");
     let cases: [(&str, &[&str], &str); 4] = [
         ("subpixel", &["--subpixel"], "sub-pixel vertices"),
         (
@@ -33,7 +35,7 @@ fn non_hardware_options_need_the_feature() {
         ("f32", &["--divide", "f32"], "f32 GTE divide"),
     ];
     for (name, args, knob) in cases {
-        let o = render(name, args);
+        let o = render(&scratch, name, args);
         let stderr = String::from_utf8_lossy(&o.stderr);
         if cfg!(feature = "accuracy-knobs") {
             assert!(o.status.success(), "{args:?}: {stderr}");
@@ -50,6 +52,7 @@ fn non_hardware_options_need_the_feature() {
 /// The hardware divide is no knob: every build runs it.
 #[test]
 fn the_hardware_divide_runs_in_every_build() {
-    let o = render("unr", &["--divide", "unr"]);
+    let scratch = Scratch::new("the_hardware_divide_runs_in_every_build");
+    let o = render(&scratch, "unr", &["--divide", "unr"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }

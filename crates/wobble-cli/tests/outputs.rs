@@ -4,6 +4,9 @@
 
 #![cfg(unix)]
 
+mod common;
+
+use common::Scratch;
 use std::os::unix::fs::{FileTypeExt, MetadataExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -11,14 +14,6 @@ use std::time::{Duration, Instant};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// A fresh empty directory for one test.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wobble-outputs-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn wobble(args: &[&str]) -> Output {
@@ -73,7 +68,7 @@ fn assert_dump_png(bytes: &[u8]) {
 /// file that does not exist yet creates that file.
 #[test]
 fn symbolic_links_are_written_through() {
-    let d = dir("symlink");
+    let d = Scratch::new("symlink");
     let raw = raw_vram(&d);
     std::fs::write(d.join("real.png"), b"old").unwrap();
     std::os::unix::fs::symlink("real.png", d.join("link.png")).unwrap();
@@ -105,7 +100,7 @@ fn symbolic_links_are_written_through() {
 /// image extension its format is PNG.
 #[test]
 fn fifo_is_written_through() {
-    let d = dir("fifo");
+    let d = Scratch::new("fifo");
     let raw = raw_vram(&d);
     let fifo = d.join("pipe");
     let made = Command::new("mkfifo").arg(&fifo).status().unwrap();
@@ -154,7 +149,7 @@ fn dev_null_takes_every_output() {
 /// file gets; without one it is refused naming `--format`. The summary then goes to stderr.
 #[test]
 fn dash_is_standard_output() {
-    let d = dir("stdout");
+    let d = Scratch::new("stdout");
     let raw = raw_vram(&d);
     let o = wobble(&["dump", s(&raw), "-o", "-", "--format", "png"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -234,7 +229,7 @@ fn wobble_unprivileged(d: &Path, args: &[&str]) -> Output {
 /// are refused before any work, naming the directory and the reason; nothing changes.
 #[test]
 fn read_only_directory_is_a_clear_error() {
-    let d = dir("readonly");
+    let d = Scratch::new("readonly");
     let raw = raw_vram(&d);
     std::fs::set_permissions(&raw, std::fs::Permissions::from_mode(0o644)).unwrap();
     let ro = d.join("ro");
@@ -274,7 +269,7 @@ fn read_only_directory_is_a_clear_error() {
 /// Replacing an existing file keeps its permission bits and leaves no temporary file.
 #[test]
 fn replaced_file_keeps_its_permissions() {
-    let d = dir("mode");
+    let d = Scratch::new("mode");
     let raw = raw_vram(&d);
     let out = d.join("out.png");
     std::fs::write(&out, b"old").unwrap();
@@ -290,7 +285,7 @@ fn replaced_file_keeps_its_permissions() {
 /// `--gif x.png` is refused before any work: GIF bytes never go into a file named as a PNG.
 #[test]
 fn gif_option_needs_a_gif_name() {
-    let d = dir("gifname");
+    let d = Scratch::new("gifname");
     let out = d.join("x.png");
     let o = wobble(&["render", "--frames", "2", "--gif", s(&out)]);
     assert!(!o.status.success());
@@ -303,7 +298,7 @@ fn gif_option_needs_a_gif_name() {
 /// wrong size) removes their temporary files: the directory is as it was.
 #[test]
 fn errors_leave_nothing_behind() {
-    let d = dir("errors");
+    let d = Scratch::new("errors");
     let bad = d.join("bad.gpu");
     std::fs::write(&bad, "gp0 e1000000\ngp0 zz\n").unwrap();
     let o = wobble(&[
@@ -328,7 +323,7 @@ fn errors_leave_nothing_behind() {
 /// directory's other files alone.
 #[test]
 fn existing_report_directory_keeps_other_files() {
-    let d = dir("existing");
+    let d = Scratch::new("existing");
     let report = d.join("report");
     std::fs::create_dir(&report).unwrap();
     std::fs::write(report.join("notes.txt"), b"mine").unwrap();
@@ -418,7 +413,7 @@ fn temporary_in_progress(d: &Path, inner: Option<&str>) -> bool {
 /// file are removed; nothing is left under any name.
 #[test]
 fn interrupted_render_leaves_nothing() {
-    let d = dir("sigint-render");
+    let d = Scratch::new("sigint-render");
     let out = d.join("x.png");
     let (code, e) = interrupt(
         &["render", "--frames", "3000", "-o", s(&out)],
@@ -434,7 +429,7 @@ fn interrupted_render_leaves_nothing() {
 /// images without trade.md, no temporary directory.
 #[test]
 fn interrupted_trade_leaves_nothing() {
-    let d = dir("sigterm-trade");
+    let d = Scratch::new("sigterm-trade");
     let scene = root().join("fixtures/scenes/face-on.toml");
     let out = d.join("report");
     let (code, e) = interrupt(
@@ -461,7 +456,7 @@ fn interrupted_trade_leaves_nothing() {
 /// directory holds what it held before, and no temporary directory.
 #[test]
 fn interrupted_inspect_leaves_the_directory_as_it_was() {
-    let d = dir("sigint-inspect");
+    let d = Scratch::new("sigint-inspect");
     let stream = d.join("long.gpu");
     // 3000 fills of the whole drawing area, each a different colour: one image each.
     let text: String = (0..3000u32)

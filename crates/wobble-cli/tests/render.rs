@@ -1,15 +1,16 @@
 //! `wobble render`: the example scene, a bad size, animated GIF output.
 
-use std::path::PathBuf;
+mod common;
+
+use common::Scratch;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-fn write(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("wobble-render-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
@@ -17,7 +18,8 @@ fn write(name: &str, text: &str) -> PathBuf {
 
 #[test]
 fn render_command_on_example_and_bad_size() {
-    let out = write("ex.png", "");
+    let scratch = Scratch::new("render_command_on_example_and_bad_size");
+    let out = write(&scratch, "ex.png", "");
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args([
             "render",
@@ -52,8 +54,9 @@ fn render_command_on_example_and_bad_size() {
 
 #[test]
 fn render_gif() {
-    let gif = write("anim.gif", "");
-    let out = write("last.png", "");
+    let scratch = Scratch::new("render_gif");
+    let gif = write(&scratch, "anim.gif", "");
+    let out = write(&scratch, "last.png", "");
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args([
             "render",
@@ -77,7 +80,8 @@ fn render_gif() {
 
 #[test]
 fn frames_without_gif_flag_write_a_gif_beside_the_png() {
-    let out = write("beside.png", "");
+    let scratch = Scratch::new("frames_without_gif_flag_write_a_gif_beside_the_png");
+    let out = write(&scratch, "beside.png", "");
     let gif = out.with_extension("gif");
     let _ = std::fs::remove_file(&gif);
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
@@ -103,7 +107,8 @@ fn frames_without_gif_flag_write_a_gif_beside_the_png() {
 /// The README's largest size works on the default scene (its CLUT goes beside the buffers).
 #[test]
 fn default_scene_at_640x256() {
-    let out = write("big.png", "");
+    let scratch = Scratch::new("default_scene_at_640x256");
+    let out = write(&scratch, "big.png", "");
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args(["render", "--size", "640x256", "-o", out.to_str().unwrap()])
         .output()
@@ -117,7 +122,8 @@ fn default_scene_at_640x256() {
 /// estimated above the limit is refused before any work unless forced.
 #[test]
 fn progress_lines_and_large_output_refusal() {
-    let out = write("progress.png", "");
+    let scratch = Scratch::new("progress_lines_and_large_output_refusal");
+    let out = write(&scratch, "progress.png", "");
     let gif = out.with_extension("gif");
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args(["render", "--frames", "20", "-o", out.to_str().unwrap()])
@@ -147,8 +153,9 @@ fn progress_lines_and_large_output_refusal() {
 /// 2 0x3B, bit 0 leftmost), drawn 2 pixels in from the box corner.
 #[test]
 fn compare_side_by_side_with_labels() {
+    let scratch = Scratch::new("compare_side_by_side_with_labels");
     use image::AnimationDecoder;
-    let out = write("compare.gif", "");
+    let out = write(&scratch, "compare.gif", "");
     let o = Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args([
             "render",
@@ -201,11 +208,12 @@ fn compare_side_by_side_with_labels() {
 /// display buffers.
 #[test]
 fn advertised_sizes_render() {
+    let scratch = Scratch::new("advertised_sizes_render");
     let example = root().join("fixtures/scenes/example.toml");
     for size in [
         "256x256", "320x256", "368x256", "512x256", "640x256", "640x240",
     ] {
-        let out = write(&format!("size-{size}.png"), "");
+        let out = write(&scratch, &format!("size-{size}.png"), "");
         for scene in [None, Some(example.to_str().unwrap())] {
             let mut args = vec!["render", "--size", size, "-o", out.to_str().unwrap()];
             args.extend(scene);
@@ -232,8 +240,9 @@ fn advertised_sizes_render() {
 /// them and 4 black columns at the right; a region outside the screen is refused.
 #[test]
 fn zoom_crops_and_scales_the_frame() {
-    let plain = write("plain.png", "");
-    let zoomed = write("zoomed.png", "");
+    let scratch = Scratch::new("zoom_crops_and_scales_the_frame");
+    let plain = write(&scratch, "plain.png", "");
+    let zoomed = write(&scratch, "zoomed.png", "");
     let run = |extra: &[&str], out: &PathBuf| {
         let mut args = vec!["render", "-o", out.to_str().unwrap()];
         args.extend_from_slice(extra);
@@ -272,7 +281,7 @@ fn zoom_crops_and_scales_the_frame() {
     for x in 60..64 {
         assert_eq!(zoomed.get_pixel(x, 0).0, [0, 0, 0]);
     }
-    let out = write("never.png", "");
+    let out = write(&scratch, "never.png", "");
     for (bad, says) in [
         ("310,0,11,10", "not inside the 320x240 screen"),
         ("0,235,10,6", "rows 235..241"),

@@ -1,11 +1,15 @@
 //! `wobble trade`: the command writes the report on a small scene.
 
+mod common;
+
+use common::Scratch;
 use std::path::PathBuf;
 
 /// `wobble trade` runs on a small scene and writes the table, images and plot.
 #[test]
 fn trade_command_writes_report() {
-    let out = std::env::temp_dir().join(format!("wobble-trade-{}", std::process::id()));
+    let scratch = Scratch::new("trade_command_writes_report");
+    let out = scratch.join("report");
     let o = std::process::Command::new(env!("CARGO_BIN_EXE_wobble"))
         .args([
             "trade",

@@ -1,19 +1,15 @@
 //! The command line as a user meets it: help texts, the README's usage lines, default output
 //! names, `render --inspect`, counts and numbers in messages, and files of the wrong kind.
 
+mod common;
+
+use common::Scratch;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
-/// A fresh empty directory for one test.
-fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("wobble-usage-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 /// Run `wobble` in directory `cwd`.
@@ -25,8 +21,12 @@ fn wobble_in(cwd: &Path, args: &[&str]) -> Output {
         .expect("binary runs")
 }
 
+/// Run `wobble` in a fresh directory of its own, removed afterwards: a command that writes
+/// into the current directory leaves nothing behind.
 fn wobble(args: &[&str]) -> Output {
-    wobble_in(&std::env::temp_dir(), args)
+    static RUNS: AtomicUsize = AtomicUsize::new(0);
+    let cwd = Scratch::new(&format!("run{}", RUNS.fetch_add(1, Ordering::Relaxed)));
+    wobble_in(&cwd, args)
 }
 
 fn stdout(o: &Output) -> String {
@@ -182,7 +182,7 @@ fn readme_usage_lines_match_the_cli() {
 /// and refuse to write over their input.
 #[test]
 fn replay_and_dump_default_to_the_input_name() {
-    let d = dir("defaults");
+    let d = Scratch::new("defaults");
     let stream = root().join("fixtures/gpu/quad.gpu");
     let o = wobble_in(&d, &["replay", s(&stream), "--raw", "quad.vram.bin"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -203,7 +203,7 @@ fn replay_and_dump_default_to_the_input_name() {
 /// `trade` takes `-o` like every other command, and `--out` still works.
 #[test]
 fn trade_takes_dash_o_and_the_old_spelling() {
-    let d = dir("trade");
+    let d = Scratch::new("trade");
     let scene = root().join("fixtures/scenes/face-on.toml");
     for (flag, name) in [("-o", "a"), ("--out", "b")] {
         let out = d.join(name);
@@ -229,7 +229,7 @@ fn trade_takes_dash_o_and_the_old_spelling() {
 /// given apart from the rendering.
 #[test]
 fn render_inspect_names_the_report_and_writes_no_image() {
-    let d = dir("render-inspect");
+    let d = Scratch::new("render-inspect");
     let o = wobble_in(&d, &["render", "--inspect", "rep"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(entries(&d), ["rep"]);
@@ -257,7 +257,7 @@ fn render_inspect_names_the_report_and_writes_no_image() {
 /// its cube survives NCLIP) in one frame; a one-triangle stream has one draw.
 #[test]
 fn counts_of_one_are_singular() {
-    let d = dir("plurals");
+    let d = Scratch::new("plurals");
     let scene = root().join("fixtures/scenes/face-on.toml");
     let o = wobble_in(&d, &["render", s(&scene)]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -280,7 +280,7 @@ fn counts_of_one_are_singular() {
 /// A mesh scaled past the GTE's range: the largest scale is printed as a plain number.
 #[test]
 fn scale_limit_is_a_plain_number() {
-    let d = dir("scale");
+    let d = Scratch::new("scale");
     std::fs::write(
         d.join("big.toml"),
         "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\nscale = 40000\n",
@@ -299,7 +299,7 @@ fn scale_limit_is_a_plain_number() {
 /// scene's directory resolved) and the system's reason.
 #[test]
 fn missing_mesh_file_names_the_path_and_reason() {
-    let d = dir("missing");
+    let d = Scratch::new("missing");
     std::fs::write(
         d.join("s.toml"),
         "[[mesh]]\nname = \"m\"\nfile = \"missing.obj\"\n[[object]]\nmesh = \"m\"\n",
@@ -338,7 +338,7 @@ fn gte_replay_of_another_format_is_one_error() {
 /// expected.
 #[test]
 fn binary_input_names_the_expected_format() {
-    let d = dir("binary");
+    let d = Scratch::new("binary");
     let bin = d.join("x.gpu");
     std::fs::write(&bin, [0x89u8, b'P', b'N', b'G', 0xFF, 0x00, 0x13]).unwrap();
     for args in [

@@ -5,6 +5,9 @@
 // Pixel loops index several parallel per-pixel tables by the same index.
 #![allow(clippy::needless_range_loop)]
 
+mod common;
+
+use common::Scratch;
 use gpu::command_stream::{self, Port};
 use gpu::encode::{self, Polygon, Rectangle, SpriteSize, Vertex};
 use gpu::{Gpu, VRAM_LEN};
@@ -16,13 +19,6 @@ fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../fixtures/gpu")
         .join(name)
-}
-
-fn out_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("wobble-inspect-test-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
 }
 
 /// All rows of a report, read back from its chunk files.
@@ -80,9 +76,10 @@ fn triangle(v: [(i16, i16); 3]) -> encode::Packet {
     .packet()
 }
 
-fn report(text: &str, name: &str) -> (InspectSummary, Vec<Value>, PathBuf) {
+/// The report of the stream `text`, written into a scratch directory named `name`.
+fn report(text: &str, name: &str) -> (InspectSummary, Vec<Value>, Scratch) {
     let commands = command_stream::parse(text).unwrap();
-    let dir = out_dir(name);
+    let dir = Scratch::new(name);
     let mut gpu = Gpu::new();
     let summary = write_report(
         &mut gpu,
@@ -340,7 +337,6 @@ fn hardware_fixtures_small() {
                 assert!(dir.join(png).is_file(), "{png}");
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 
@@ -361,7 +357,6 @@ fn hardware_fixtures_large() {
                 assert_eq!(r["tex"]["uv"].as_array().unwrap().len(), 4);
             }
         }
-        let _ = std::fs::remove_dir_all(&dir);
     }
 }
 
@@ -380,7 +375,7 @@ fn drop_reasons_are_reported() {
         &triangle([(32, 32), (48, 32), (32, 48)]),
         &triangle([(0, 0), (8, 0), (0, 8)]),
     ]);
-    let (s, rows, dir) = report(&text, "drops");
+    let (s, rows, _dir) = report(&text, "drops");
     let fate = |i: usize| rows[i]["prims"][0]["fate"].as_str().map(str::to_string);
     assert!(fate(3).unwrap().starts_with("size limit"));
     assert_eq!(fate(4).unwrap(), "zero area");
@@ -389,7 +384,6 @@ fn drop_reasons_are_reported() {
     assert_eq!(s.dropped, 3);
     assert_eq!(s.changed[3] + s.changed[4] + s.changed[6], 0);
     assert!(s.changed[7] > 0);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Each command's GPU time is listed, in GPU and CPU cycles, from the cost table of
@@ -421,7 +415,6 @@ fn each_command_has_its_gpu_time() {
     assert_eq!(s.cpu_cycles, total);
     let index = std::fs::read_to_string(dir.join("data/index.js")).unwrap();
     assert!(index.contains(&format!("\"cpuCycles\":{total}")), "{index}");
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Each command's texture cache misses are listed (docs/hardware/gpu.md §10: an entry holds
@@ -447,7 +440,6 @@ fn each_command_has_its_texture_cache_misses() {
         "{}",
         summary_line(&s, &dir)
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -456,11 +448,10 @@ fn truncated_stream_gives_a_report_with_the_cut_command_marked() {
     // Cut inside the last polygon packet.
     let lines: Vec<&str> = text.lines().collect();
     let cut = lines[..lines.len() - 2].join("\n");
-    let (s, rows, dir) = report(&cut, "truncated");
+    let (s, rows, _dir) = report(&cut, "truncated");
     let last = rows.last().unwrap();
     assert!(last["truncated"].as_str().unwrap().starts_with("truncated"));
     check_pixel_accounting(&cut, &s);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -485,14 +476,13 @@ fn draw_covering_all_vram() {
         &rectangle.packet(),
     ]);
     let text = text.as_str();
-    let (s, rows, dir) = report(text, "whole");
+    let (s, rows, _dir) = report(text, "whole");
     assert_eq!(s.changed[3], 1024 * 511);
     assert_eq!(s.changed[4], 1024);
     assert_eq!(s.changed[5], 1023 * 511);
     let crop = rows[5]["img"]["crop"].as_array().unwrap();
     assert!(crop[4].as_u64().unwrap() >= 4, "scaled down");
     check_pixel_accounting(text, &s);
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -522,7 +512,7 @@ fn a_million_commands_stay_usable() {
     }
     let commands = command_stream::parse(&text).unwrap();
     assert_eq!(commands.len(), 1_000_002);
-    let dir = out_dir("million");
+    let dir = Scratch::new("million");
     let mut gpu = Gpu::new();
     let start = std::time::Instant::now();
     let s = write_report(
@@ -550,7 +540,6 @@ fn a_million_commands_stay_usable() {
         ))
         .is_file()
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -612,7 +601,7 @@ fn rendered_frame_traces_faces_to_packets() {
     }
     assert!(blend_words > 0, "no blend-mode word");
     // Replaying the traced packets on the GPU as it was reproduces the frame.
-    let dir = out_dir("frame");
+    let dir = Scratch::new("frame");
     let s = wobble::inspect::write_frame_report(
         renderer.scene(),
         &trace,
@@ -634,7 +623,6 @@ fn rendered_frame_traces_faces_to_packets() {
             .unwrap()
             .contains("culled")
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 /// Decodes standard base64 (the report's data scripts), independently of the writer.
@@ -717,5 +705,4 @@ fn raw_vram_display_area_and_changed_panel() {
         checked += 1;
     }
     assert!(checked > 0 && s.images > 0);
-    let _ = std::fs::remove_dir_all(&dir);
 }

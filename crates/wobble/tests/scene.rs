@@ -1,7 +1,10 @@
 //! Scene files: the example loads; malformed input is reported with the file
 //! and the line or field, never a panic.
 
-use std::path::PathBuf;
+mod common;
+
+use common::Scratch;
+use std::path::{Path, PathBuf};
 use wobble::scene::Scene;
 use wobble::scene::mesh::Mesh;
 
@@ -9,16 +12,16 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-fn write(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("wobble-scene-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
     p
 }
 
-fn error(text: &str, name: &str) -> String {
-    Scene::load(&write(name, text)).unwrap_err().to_string()
+fn error(dir: &Path, text: &str, name: &str) -> String {
+    Scene::load(&write(dir, name, text))
+        .unwrap_err()
+        .to_string()
 }
 
 #[test]
@@ -34,26 +37,34 @@ fn example_scene_loads() {
 
 #[test]
 fn syntax_error_names_file_and_line() {
-    let e = error("[screen]\nwidth = 320\nheight = \n", "syntax.toml");
+    let scratch = Scratch::new("syntax_error_names_file_and_line");
+    let e = error(
+        &scratch,
+        "[screen]\nwidth = 320\nheight = \n",
+        "syntax.toml",
+    );
     assert!(e.contains("syntax.toml") && e.contains("line 3"), "{e}");
 }
 
 #[test]
 fn unknown_field_is_named() {
-    let e = error("[camera]\nfov = 90\n", "field.toml");
+    let scratch = Scratch::new("unknown_field_is_named");
+    let e = error(&scratch, "[camera]\nfov = 90\n", "field.toml");
     assert!(e.contains("field.toml") && e.contains("fov"), "{e}");
 }
 
 #[test]
 fn bad_values_are_refused() {
-    let e = error("[screen]\nwidth = 300\n", "w.toml");
+    let scratch = Scratch::new("bad_values_are_refused");
+    let e = error(&scratch, "[screen]\nwidth = 300\n", "w.toml");
     assert!(e.contains("screen.width"), "{e}");
     let e = error(
+        &scratch,
         "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\ntessellation = 9\n",
         "t.toml",
     );
     assert!(e.contains("tessellation"), "{e}");
-    let e = error("[[object]]\nmesh = \"nothing\"\n", "m.toml");
+    let e = error(&scratch, "[[object]]\nmesh = \"nothing\"\n", "m.toml");
     assert!(e.contains("no mesh named `nothing`"), "{e}");
 }
 
@@ -61,13 +72,13 @@ fn bad_values_are_refused() {
 /// the operating system's reason.
 #[test]
 fn missing_obj_names_the_file() {
+    let scratch = Scratch::new("missing_obj_names_the_file");
     let e = error(
+        &scratch,
         "[[mesh]]\nname = \"a\"\nfile = \"does-not-exist.obj\"\n",
         "obj.toml",
     );
-    let resolved = std::env::temp_dir()
-        .join(format!("wobble-scene-{}", std::process::id()))
-        .join("does-not-exist.obj");
+    let resolved = scratch.join("does-not-exist.obj");
     assert!(
         e.contains(&format!("mesh file {}", resolved.display())),
         "{e}"
@@ -78,7 +89,9 @@ fn missing_obj_names_the_file() {
 /// A missing texture PNG: the same.
 #[test]
 fn missing_texture_names_the_file_and_the_reason() {
+    let scratch = Scratch::new("missing_texture_names_the_file_and_the_reason");
     let e = error(
+        &scratch,
         "[[texture]]\nname = \"t\"\nfile = \"gone.png\"\n",
         "tex.toml",
     );
@@ -88,8 +101,10 @@ fn missing_texture_names_the_file_and_the_reason() {
 
 #[test]
 fn mesh_too_large_reports_the_scale_needed() {
+    let scratch = Scratch::new("mesh_too_large_reports_the_scale_needed");
     // The cube's coordinates reach 1.0; scale 40000 exceeds 32767 and 32767 is the limit.
     let e = error(
+        &scratch,
         "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\nscale = 40000\n",
         "big.toml",
     );
@@ -98,27 +113,30 @@ fn mesh_too_large_reports_the_scale_needed() {
 
 #[test]
 fn oversized_png_is_refused() {
+    let scratch = Scratch::new("oversized_png_is_refused");
     // A 300x10 PNG: wider than a texture page.
     let img = image::RgbImage::new(300, 10);
-    let png = write("wide.png", "");
+    let png = write(&scratch, "wide.png", "");
     img.save(&png).unwrap();
     let scene = format!(
         "[[texture]]\nname = \"t\"\nfile = \"{}\"\n",
         png.file_name().unwrap().to_str().unwrap()
     );
-    let e = error(&scene, "wide.toml");
+    let e = error(&scratch, &scene, "wide.toml");
     assert!(e.contains("wide.png") && e.contains("300x10"), "{e}");
 }
 
 #[test]
 fn malformed_obj_names_file_and_line() {
+    let scratch = Scratch::new("malformed_obj_names_file_and_line");
     let obj = write(
+        &scratch,
         "broken.obj",
         "# a triangle with a bad index\nv 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 7\n",
     );
     let e = Mesh::load_obj(&obj).unwrap_err().to_string();
     assert!(e.contains("broken.obj") && e.contains("line 6"), "{e}");
-    let obj = write("badv.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n");
+    let obj = write(&scratch, "badv.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n");
     let e = Mesh::load_obj(&obj).unwrap_err().to_string();
     assert!(e.contains("badv.obj") && e.contains("line 2"), "{e}");
 }
@@ -126,26 +144,29 @@ fn malformed_obj_names_file_and_line() {
 /// The `[accuracy]` table sets the non-hardware knobs; unknown values are refused.
 #[test]
 fn accuracy_table() {
+    let scratch = Scratch::new("accuracy_table");
     let s = Scene::load(&write(
+        &scratch,
         "acc.toml",
         "[accuracy]\ndivide = \"exact\"\nsubpixel = true\nperspective_uv = true\n",
     ))
     .unwrap();
     assert_eq!(s.accuracy.divide, gte::DivideMode::Exact);
     assert!(s.accuracy.subpixel && s.accuracy.perspective_uv);
-    let d = Scene::load(&write("acc0.toml", "")).unwrap();
+    let d = Scene::load(&write(&scratch, "acc0.toml", "")).unwrap();
     assert_eq!(
         d.accuracy,
         wobble::scene::Accuracy::default(),
         "hardware by default"
     );
-    let e = error("[accuracy]\ndivide = \"fast\"\n", "acc1.toml");
+    let e = error(&scratch, "[accuracy]\ndivide = \"fast\"\n", "acc1.toml");
     assert!(e.contains("acc1.toml") && e.contains("fast"), "{e}");
 }
 
 /// Every float field is checked, and the error names the field as written in the file.
 #[test]
 fn every_float_field_is_validated_by_name() {
+    let scratch = Scratch::new("every_float_field_is_validated_by_name");
     let object = "[[mesh]]\nname = \"c\"\nbuiltin = \"cube\"\n[[object]]\nmesh = \"c\"\n";
     let cases: [(String, &str); 14] = [
         ("[light]\ndirection = [0, 0, 0]\n".into(), "light.direction"),
@@ -185,7 +206,7 @@ fn every_float_field_is_validated_by_name() {
         (format!("{object}scale = 1e308\n"), "object 1: scale"),
     ];
     for (i, (text, field)) in cases.iter().enumerate() {
-        let e = error(text, &format!("num{i}.toml"));
+        let e = error(&scratch, text, &format!("num{i}.toml"));
         assert!(
             e.contains(&format!("num{i}.toml: {field} must be")),
             "case {i} ({field}): {e}"
@@ -193,6 +214,7 @@ fn every_float_field_is_validated_by_name() {
     }
     // Neighbouring valid values still load.
     Scene::load(&write(
+        &scratch,
         "num-ok.toml",
         "[light]\ndirection = [0, 0, 0.001]\n[camera]\nposition = [0, 0, -1000000]\n",
     ))
@@ -202,6 +224,7 @@ fn every_float_field_is_validated_by_name() {
 /// A non-finite number in `v`, `vt` or `vn` is refused with the file's own line number.
 #[test]
 fn non_finite_obj_numbers_name_the_line() {
+    let scratch = Scratch::new("non_finite_obj_numbers_name_the_line");
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     let cases = [
         (
@@ -223,7 +246,7 @@ fn non_finite_obj_numbers_name_the_line() {
         (format!("{tri}v 1e39 0 0\nf 1 2 4\n"), "line 4", "`v`"),
     ];
     for (i, (text, line, keyword)) in cases.iter().enumerate() {
-        let obj = write(&format!("nf{i}.obj"), text);
+        let obj = write(&scratch, &format!("nf{i}.obj"), text);
         let e = Mesh::load_obj(&obj).unwrap_err().to_string();
         assert!(
             e.contains(&format!("nf{i}.obj: {line}: {keyword}")) && e.contains("not finite"),
@@ -236,10 +259,15 @@ fn non_finite_obj_numbers_name_the_line() {
 /// 31-digit numbers or a suggested scale of 0.000000.
 #[test]
 fn huge_obj_coordinates_are_reported_plainly() {
-    let obj = write("huge.obj", "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n");
+    let scratch = Scratch::new("huge_obj_coordinates_are_reported_plainly");
+    let obj = write(
+        &scratch,
+        "huge.obj",
+        "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nf 1 2 3\n",
+    );
     let scene = "[[mesh]]\nname = \"h\"\nfile = \"huge.obj\"\n[[object]]\nmesh = \"h\"\n";
     assert!(obj.exists());
-    let e = error(scene, "huge.toml");
+    let e = error(&scratch, scene, "huge.toml");
     assert!(e.contains("far too large") && e.contains("1.0e30"), "{e}");
     assert!(!e.contains("0.000000") && !e.contains("000000000"), "{e}");
 }
