@@ -190,49 +190,57 @@ const fn console_order(core: usize) -> [(usize, bool); 2] {
 
 /// Truncating division by a triangle's gradient denominator, one hardware divide per
 /// triangle instead of two per attribute: `n / den` (rounded toward zero) as
-/// `(|n| * r) >> 64` with `r = floor(2^64 / |den|) + 1`, exact while `|n| * |den| < 2^64`
-/// (the excess over `|n| / |den|` stays below `1 / |den|`). `|den|` < 2^21 and the gradient
-/// numerators |n| < 2^31 (docs/hardware/gpu.md §3.6).
+/// `((|n| + 1) * r) >> 64` with `r = floor((2^64 - 1) / |den|)`, without a branch.
+///
+/// Exact for every 32-bit `n` and `0 < |den| < 2^32`: with `2^64 - 1 = r * |den| + s`,
+/// `0 <= s < |den|`, the product over 2^64 is `(|n| + 1) / |den| * (1 - (1 + s) / 2^64)`. That
+/// is below `(|n| + 1) / |den|`, at most `floor(|n| / |den|) + 1`, and short of
+/// `(|n| + 1) / |den|` by at most `(|n| + 1) / 2^64`, no more than `1 / |den|` while
+/// `(|n| + 1) * |den| <= 2^64`; so its integer part is `floor(|n| / |den|)`. The gradient
+/// maths is 32-bit (docs/hardware/gpu.md §3.6) and `|den|` < 2^21 (§3.2).
 #[derive(Clone, Copy)]
 struct Divisor {
-    magnitude: u64,
     reciprocal: u64,
     negative: bool,
 }
 
 impl Divisor {
-    fn new(den: i64) -> Self {
-        let magnitude = den.unsigned_abs().max(1);
+    /// The divisor `den`; 0 (a collinear triangle, never drawn, §3.6) divides as 1.
+    fn new(den: i32) -> Self {
         Self {
-            magnitude,
-            // For a power of two, u64::MAX / d + 1 is 2^64 / d exactly; else floor(2^64 / d) + 1.
-            reciprocal: (u64::MAX / magnitude).wrapping_add(1),
+            reciprocal: u64::MAX / u64::from(den.unsigned_abs().max(1)),
             negative: den < 0,
         }
     }
 
+    /// `n / den`, rounded toward zero.
     #[inline(always)]
-    fn divide(self, n: i64) -> i64 {
-        let m = n.unsigned_abs();
-        let q = if self.magnitude == 1 {
-            m as i64
-        } else if m < 1 << 42 && self.magnitude < 1 << 22 {
-            ((u128::from(m) * u128::from(self.reciprocal)) >> 64) as i64
+    fn divide(self, n: i32) -> i32 {
+        let m = u64::from(n.unsigned_abs()) + 1;
+        let q = ((u128::from(m) * u128::from(self.reciprocal)) >> 64) as u32 as i32;
+        if (n < 0) != self.negative {
+            q.wrapping_neg()
         } else {
-            (m / self.magnitude) as i64
-        };
-        if (n < 0) != self.negative { -q } else { q }
+            q
+        }
     }
 }
 
-/// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), i32 maths with truncating division.
+/// d/dx and d/dy of one attribute in 8.24 (docs/hardware/gpu.md §3.6), 32-bit signed maths
+/// with truncating division: attributes of 8 bits and vertices the size limit keeps within
+/// 1023 columns and 511 rows of each other (§3.2) keep each numerator times 4096 under 2^31.
 #[inline(always)]
 fn gradient(v: &[Vtx; 3], i: usize, den: Divisor) -> (u32, u32) {
     let (a, b, c) = (&v[0], &v[1], &v[2]);
-    let (aa, ba, ca) = (a.attr[i] as i64, b.attr[i] as i64, c.attr[i] as i64);
-    let ddx = den.divide(((ba - aa) * (c.y - b.y) as i64 - (ca - ba) * (b.y - a.y) as i64) * 4096);
-    let ddy = den.divide(((b.x - a.x) as i64 * (ca - ba) - (c.x - b.x) as i64 * (ba - aa)) * 4096);
-    ((ddx as i32 as u32) << 12, (ddy as i32 as u32) << 12)
+    let (aa, ba, ca) = (a.attr[i], b.attr[i], c.attr[i]);
+    let ddx = (ba - aa)
+        .wrapping_mul(c.y - b.y)
+        .wrapping_sub((ca - ba).wrapping_mul(b.y - a.y));
+    let ddy = (b.x - a.x)
+        .wrapping_mul(ca - ba)
+        .wrapping_sub((c.x - b.x).wrapping_mul(ba - aa));
+    let (ddx, ddy) = (den.divide(ddx << 12), den.divide(ddy << 12));
+    ((ddx as u32) << 12, (ddy as u32) << 12)
 }
 
 /// Draw a flat, untextured, opaque, undithered triangle without mask check with corners `p`
@@ -786,13 +794,15 @@ fn part_rows(
         super::Rows::All => 1,
         super::Rows::SkipParity(_) => 2,
     };
-    let count = (last - first + every - 1) / every;
+    // `first` is a drawn row, so the rows walked are the rows drawn: no division here.
+    let walked = rows.count(first, last);
+    let count = walked as i32;
     let walk = if upward {
         (first + (count - 1) * every, count, -every)
     } else {
         (first, count, every)
     };
-    Some((walk, rows.count(first, last)))
+    Some((walk, walked))
 }
 
 /// Whether the pipeline interpolates attribute `i` (0-2 colour, 3-4 U and V).
@@ -839,7 +849,8 @@ impl Attributes {
             1 => b,
             _ => c,
         };
-        let den = (b.x - a.x) as i64 * (c.y - b.y) as i64 - (c.x - b.x) as i64 * (b.y - a.y) as i64;
+        // Coordinates of 11 bits keep this under 2^23 in magnitude (docs/hardware/gpu.md §3.6).
+        let den = (b.x - a.x) * (c.y - b.y) - (c.x - b.x) * (b.y - a.y);
         let mut grads = [(0u32, 0u32); 5];
         let mut origin = [0u32; 5];
         let divisor = Divisor::new(den);
@@ -1341,26 +1352,63 @@ const LANES: usize = 8;
 
 #[cfg(test)]
 mod tests {
-    use super::Divisor;
+    use super::{Divisor, Vtx, gradient};
     use proptest::prelude::*;
 
     proptest! {
-        /// The reciprocal divide truncates toward zero as i64 division does, over the whole
-        /// range of gradient numerators and denominators and at their extremes.
+        /// The reciprocal divide truncates toward zero as i64 division does, for every
+        /// 32-bit numerator and denominator, and over the range of gradient denominators.
         #[test]
         fn divisor_truncates_like_division(
-            n in prop_oneof![-(1i64 << 31)..(1i64 << 31), any::<i64>().prop_map(|n| n >> 8)],
-            den in prop_oneof![-(1i64 << 21)..(1i64 << 21), -4i64..4],
+            n in any::<i32>(),
+            den in prop_oneof![any::<i32>(), -(1i32 << 21)..(1i32 << 21), -4i32..4],
         ) {
             prop_assume!(den != 0);
-            prop_assert_eq!(Divisor::new(den).divide(n), n / den);
+            let quotient = i64::from(n) / i64::from(den);
+            // i32::MIN / -1 does not fit 32 bits; it wraps, as on a 32-bit machine.
+            prop_assert_eq!(Divisor::new(den).divide(n), quotient as i32);
+        }
+    }
+
+    proptest! {
+        /// Each gradient equals §3.6's formula worked in i64: numerators times 4096 divided
+        /// with truncation, then taken as 32 bits and shifted into 8.24, for vertices the
+        /// size limit lets through (§3.2) and 8-bit attributes, at the limits' extremes too.
+        #[test]
+        fn gradients_match_wide_division(
+            origin in (-1024i32..1024, -1024i32..1024),
+            offsets in prop::array::uniform3((
+                prop_oneof![0i32..1024, Just(0), Just(1023)],
+                prop_oneof![0i32..512, Just(0), Just(511)],
+            )),
+            attr in prop::array::uniform3(prop::array::uniform5(
+                prop_oneof![0i32..256, Just(0), Just(255)],
+            )),
+        ) {
+            // Within 1023 columns and 511 rows of each other: what the size limit draws.
+            let v: [Vtx; 3] = core::array::from_fn(|k| Vtx {
+                x: origin.0 + offsets[k].0,
+                y: origin.1 + offsets[k].1,
+                attr: attr[k],
+            });
+            let (a, b, c) = (v[0], v[1], v[2]);
+            let den = i64::from(b.x - a.x) * i64::from(c.y - b.y)
+                - i64::from(c.x - b.x) * i64::from(b.y - a.y);
+            prop_assume!(den != 0);
+            for i in 0..5 {
+                let (aa, ba, ca) = (i64::from(a.attr[i]), i64::from(b.attr[i]), i64::from(c.attr[i]));
+                let nx = (ba - aa) * i64::from(c.y - b.y) - (ca - ba) * i64::from(b.y - a.y);
+                let ny = i64::from(b.x - a.x) * (ca - ba) - i64::from(c.x - b.x) * (ba - aa);
+                let expected = ((((nx * 4096) / den) as u32) << 12, (((ny * 4096) / den) as u32) << 12);
+                prop_assert_eq!(gradient(&v, i, Divisor::new(den as i32)), expected);
+            }
         }
     }
 
     #[test]
     fn divisor_edges() {
         for den in [
-            1i64,
+            1i32,
             -1,
             2,
             -2,
@@ -1370,20 +1418,25 @@ mod tests {
             (1 << 21) - 1,
             4095,
             4096,
+            i32::MAX,
+            i32::MIN,
+            i32::MIN + 1,
         ] {
             for n in [
-                0i64,
+                0i32,
                 1,
                 -1,
                 den,
-                -den,
-                den - 1,
-                den + 1,
-                (1 << 31) - 1,
-                -(1 << 31),
-                1 << 41,
+                den.wrapping_neg(),
+                den.wrapping_sub(1),
+                den.wrapping_add(1),
+                i32::MAX,
+                i32::MIN,
+                i32::MIN + 1,
+                1 << 30,
             ] {
-                assert_eq!(Divisor::new(den).divide(n), n / den, "{n} / {den}");
+                let quotient = (i64::from(n) / i64::from(den)) as i32;
+                assert_eq!(Divisor::new(den).divide(n), quotient, "{n} / {den}");
             }
         }
     }
