@@ -177,7 +177,7 @@ fn groups<
     let start = row + x as usize;
     if n == LANES {
         put(vram, start, out, t);
-    } else if let Some(dst) = vram.get_mut(start..start + n) {
+    } else if let Some(dst) = vram.get_mut(start..).and_then(|d| d.get_mut(..n)) {
         let out = out.to_array();
         if textured {
             for (k, d) in dst.iter_mut().enumerate() {

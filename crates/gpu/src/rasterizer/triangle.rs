@@ -67,6 +67,7 @@ fn edge_start(x: i32) -> i64 {
 }
 
 /// An edge's step per line, rounded away from zero (docs/hardware/gpu.md §3.4). `dy` > 0.
+#[inline(always)]
 fn edge_step(dx: i32, dy: i32) -> i64 {
     super::step_away_from_zero(dx, dy)
 }
@@ -713,11 +714,9 @@ pub(super) fn draw_inline<
     let area = state.area;
     let clip_rows = (area.top as i32, area.bottom as i32 + 1);
     let clip = (area.left as i32, area.right as i32 + 1);
-    // Per-triangle copies, so the row and pixel loops keep them in registers.
-    let env = *env;
     let step = attrs.grads.map(|g| g.0);
     let plan = SpanPlan::new::<TEX, CACHE, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK>(
-        &env,
+        env,
         &v,
         (clip_rows.0, clip_rows.1, clip.0, clip.1),
         (step[3], step[4]),
@@ -738,7 +737,7 @@ pub(super) fn draw_inline<
         let walk = PartRows::new(part, walk, &attrs, clip);
         if plan.groups {
             let pixels =
-                walk.groups::<TEX, GOURAUD, DITHER, CACHE>(vram, &v, (step, flat), &env, cache);
+                walk.groups::<TEX, GOURAUD, DITHER, CACHE>(vram, &v, (step, flat), env, cache);
             drawn.pixels += pixels;
             continue;
         }
@@ -758,14 +757,14 @@ pub(super) fn draw_inline<
                 .spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE, true>(
                     vram,
                     (step, flat),
-                    (&plan, &env),
+                    (&plan, env),
                     cache,
                 ),
             (None, false) => walk
                 .spans::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE, false>(
                     vram,
                     (step, flat),
-                    (&plan, &env),
+                    (&plan, env),
                     cache,
                 ),
         };
