@@ -2,6 +2,7 @@
 //! four semi-transparency modes (docs/hardware/gpu.md §6).
 
 use crate::state::BlendMode;
+use wide::u16x8;
 
 /// The dither offsets, indexed `[y & 3][x & 3]` (docs/hardware/gpu.md §6).
 pub const DITHER_MATRIX: [[i32; 4]; 4] = [
@@ -131,6 +132,64 @@ pub fn blend(mode: BlendMode, b: u16, f: u16) -> u16 {
     }
 }
 
+/// Red and blue of a 15-bit colour (bits 0-4 and 10-14): each has five free bits or the top
+/// of the halfword above it, so a per-channel sum carries into bit 5 or 15.
+const RED_BLUE: u16 = 0x7C1F;
+
+/// Green of a 15-bit colour (bits 5-9), whose sum carries into bit 10.
+const GREEN: u16 = 0x03E0;
+
+/// The carry bits of [`RED_BLUE`] sums.
+const RED_BLUE_CARRIES: u16 = 0x8020;
+
+/// The carry bit of [`GREEN`] sums.
+const GREEN_CARRY: u16 = 0x0400;
+
+/// 31 in every channel whose carry bit (5, 10 or 15) is set in `carries`, 0 elsewhere.
+#[inline(always)]
+fn fill_lanes(carries: u16x8) -> u16x8 {
+    carries - carries.unbounded_shr_scalar(5)
+}
+
+/// Per-channel `min(b + f, 31)` of eight pixels: red and blue summed in one halfword, green in
+/// another, each channel's carry filling it with 31.
+#[inline(always)]
+fn add_saturate_lanes(b: u16x8, f: u16x8) -> u16x8 {
+    let (rb_mask, g_mask) = (u16x8::splat(RED_BLUE), u16x8::splat(GREEN));
+    let rb = (b & rb_mask) + (f & rb_mask);
+    let g = (b & g_mask) + (f & g_mask);
+    let sums = (rb & rb_mask) | (g & g_mask);
+    sums | fill_lanes((rb & u16x8::splat(RED_BLUE_CARRIES)) | (g & u16x8::splat(GREEN_CARRY)))
+}
+
+/// [`blend`] of eight pixels at once, VRAM pixels `b` over new pixels `f` lane by lane
+/// (docs/hardware/gpu.md §6): B/2+F/2 (floored), B+F, B-F and B+F/4, each channel clamped to
+/// 0..31. Bit 15 of each result is zero.
+#[inline(always)]
+pub(crate) fn blend_lanes(mode: BlendMode, b: u16x8, f: u16x8) -> u16x8 {
+    let splat = u16x8::splat;
+    match mode {
+        // (b + f) >> 1 = (b >> 1) + (f >> 1) + (b & f & 1) per channel.
+        BlendMode::Average => {
+            let halves = splat(0x7BDE);
+            (b & halves).unbounded_shr_scalar(1)
+                + (f & halves).unbounded_shr_scalar(1)
+                + (b & f & splat(0x0421))
+        }
+        BlendMode::Add => add_saturate_lanes(b, f),
+        BlendMode::Subtract => {
+            // 32 + b - f per channel: the carry bit survives exactly when b >= f.
+            let (rb_mask, g_mask) = (splat(RED_BLUE), splat(GREEN));
+            let (rb_carries, g_carry) = (splat(RED_BLUE_CARRIES), splat(GREEN_CARRY));
+            let rb = ((b & rb_mask) | rb_carries) - (f & rb_mask);
+            let g = ((b & g_mask) | g_carry) - (f & g_mask);
+            let carries = (rb & rb_carries) | (g & g_carry);
+            ((rb & rb_mask) | (g & g_mask)) & fill_lanes(carries)
+        }
+        BlendMode::AddQuarter => add_saturate_lanes(b, f.unbounded_shr_scalar(2) & splat(0x1CE7)),
+    }
+}
+
 /// [`blend`] one channel at a time: the reference the packed form is tested against.
 #[cfg(test)]
 pub fn blend_per_channel(mode: BlendMode, b: u16, f: u16) -> u16 {
@@ -238,11 +297,10 @@ mod tests {
                 for fc in 0..32u16 {
                     let same = |c: u16| pack555(c, c, c);
                     let check = |b: u16, f: u16| {
-                        assert_eq!(
-                            blend(mode, b, f),
-                            blend_per_channel(mode, b, f),
-                            "{mode:?} {b:04x} {f:04x}"
-                        );
+                        let expected = blend_per_channel(mode, b, f);
+                        assert_eq!(blend(mode, b, f), expected, "{mode:?} {b:04x} {f:04x}");
+                        let lanes = blend_lanes(mode, u16x8::splat(b), u16x8::splat(f));
+                        assert_eq!(lanes, u16x8::splat(expected), "{mode:?} {b:04x} {f:04x}");
                     };
                     check(same(bc), same(fc));
                     check(same(bc) | 0x8000, same(fc) | 0x8000);
@@ -263,6 +321,17 @@ mod tests {
         fn packed_blend_equals_per_channel_blend(b: u16, f: u16) {
             for mode in MODES {
                 proptest::prop_assert_eq!(blend(mode, b, f), blend_per_channel(mode, b, f));
+            }
+        }
+
+        /// Each lane of the eight-pixel blend is the blend of its own two pixels.
+        #[test]
+        fn lane_blend_equals_per_channel_blend(b: [u16; 8], f: [u16; 8]) {
+            for mode in MODES {
+                let lanes = blend_lanes(mode, u16x8::new(b), u16x8::new(f)).to_array();
+                let expected: [u16; 8] =
+                    core::array::from_fn(|k| blend_per_channel(mode, b[k], f[k]));
+                proptest::prop_assert_eq!(lanes, expected, "{:?}", mode);
             }
         }
     }

@@ -18,7 +18,7 @@ mod rectangle;
 mod span;
 mod triangle;
 
-use crate::color::{DitheredCells, ShadeTable, blend, pack555, shaded_clut4};
+use crate::color::{DitheredCells, ShadeTable, blend, blend_lanes, pack555, shaded_clut4};
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::rows::Rows;
 use crate::state::{BlendMode, DrawState, TextureDepth};
@@ -260,6 +260,39 @@ pub(crate) fn put_shaded<const BLEND: bool, const MASK_CHECK: bool>(
         color
     };
     *dst = color | bit15 | mask_or;
+}
+
+/// [`put_shaded`] for eight pixels at once, `dst` read once and written once: lane `k` takes
+/// the texel value `texels[k]` (colour and texel bit 15) where `drawn[k]` is FFFFh (a texel
+/// that is not transparent, inside the span) and keeps its pixel where it is 0; blending per
+/// texel bit 15 with `mode`, the mask check and `mask_or` as [`put_shaded`] applies them to
+/// each pixel (docs/hardware/gpu.md §6).
+#[inline(always)]
+pub(crate) fn put_shaded_lanes<const BLEND: bool, const MASK_CHECK: bool>(
+    dst: &mut [u16; 8],
+    texels: wide::u16x8,
+    drawn: wide::u16x8,
+    mask_or: u16,
+    mode: BlendMode,
+) {
+    use wide::u16x8;
+    let old = u16x8::new(*dst);
+    let bit15 = u16x8::splat(0x8000);
+    // FFFFh in the lanes whose texel has bit 15 set.
+    let semi = (texels & bit15).simd_eq(bit15);
+    let color = if BLEND {
+        semi.bitselect(blend_lanes(mode, old, texels) | bit15, texels)
+    } else {
+        texels
+    };
+    let write = if MASK_CHECK {
+        drawn & !(old & bit15).simd_eq(bit15)
+    } else {
+        drawn
+    };
+    *dst = write
+        .bitselect(color | u16x8::splat(mask_or), old)
+        .to_array();
 }
 
 /// `(delta << 32) / steps` in 32.32 fixed point, rounded away from zero (docs/hardware/gpu.md §3.4, §4).

@@ -1166,26 +1166,46 @@ fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
     (mask_or, blend): (u16, BlendMode),
     mut track: impl FnMut(wide::u32x8, usize),
 ) {
-    // The four cells' tables as one: entry `cell * 16 + texel`, the cell stepping by 16.
+    // The four cells' tables as one: entry `cell * 16 + texel`. A group starts eight pixels
+    // after the one before it, so lane `k` is in cell `(x_start + k) & 3` in every group.
     let cells = cells.as_flattened();
-    let mut cell = ((x_start & 3) as usize) << 4;
+    let first_cell = (x_start & 3) as usize;
     let steps = span::PlainReads::steps((du, dv));
     let mut x = x_start;
     while x < x_end {
         let r = span::PlainReads::new::<1>(page, (u, v), &steps);
-        let n = ((x_end - x) as usize).min(8);
+        let n = ((x_end - x) as usize).min(LANES);
         track(r.lanes, n);
-        for k in 0..n {
+        let at = row + x as usize;
+        let entry = |k: usize| {
             let word = vram[r.address[k] as usize & (VRAM_LEN - 1)];
             let texel = usize::from((word >> r.shift[k]) & 0xF);
-            let e = if CELLS {
-                cells[(cell | texel) & 63]
+            if CELLS {
+                cells[(((first_cell + k) & 3) << 4) | texel]
             } else {
                 lut[texel]
-            };
-            let at = row + x as usize + k;
-            super::write_shaded::<BLEND, MASK_CHECK>(vram, at, e, mask_or, blend);
-            cell = (cell + 16) & 48;
+            }
+        };
+        // The span's entries, lanes past it left at 0 (transparent) and their texels unread.
+        let entries: [u32; LANES] = if n == LANES {
+            core::array::from_fn(entry)
+        } else {
+            core::array::from_fn(|k| if k < n { entry(k) } else { 0 })
+        };
+        match vram
+            .get_mut(at..)
+            .and_then(|d| d.first_chunk_mut::<LANES>())
+        {
+            Some(dst) => {
+                let texels = wide::u16x8::new(entries.map(|e| e as u16));
+                let drawn = wide::u16x8::new(entries.map(|e| 0u16.wrapping_sub((e >> 16) as u16)));
+                super::put_shaded_lanes::<BLEND, MASK_CHECK>(dst, texels, drawn, mask_or, blend);
+            }
+            None => {
+                for (k, &e) in entries.iter().enumerate().take(n) {
+                    super::write_shaded::<BLEND, MASK_CHECK>(vram, at + k, e, mask_or, blend);
+                }
+            }
         }
         u = u.wrapping_add(du.wrapping_mul(8));
         v = v.wrapping_add(dv.wrapping_mul(8));
@@ -1333,7 +1353,12 @@ fn raw15_group<const BLEND: bool, const MASK_CHECK: bool>(
             let out = t | wide::u16x8::splat(mask_or);
             *dst = keep.bitselect(wide::u16x8::new(*dst), out).to_array();
         }
-        _ => {
+        Some(dst) => {
+            let t = wide::u16x8::new(texels);
+            let drawn = !t.simd_eq(wide::u16x8::ZERO);
+            super::put_shaded_lanes::<BLEND, MASK_CHECK>(dst, t, drawn, mask_or, blend);
+        }
+        None => {
             for (k, &texel) in texels.iter().enumerate().take(n) {
                 let e = if texel == 0 {
                     0
