@@ -539,20 +539,26 @@ impl PartRows {
         (plan, env): (&SpanPlan, &PixelEnv),
         cache: &mut TextureCache,
     ) -> DrawCount {
-        self.walk(BLEND || MASK_CHECK, |y, (x_start, x_end), attr| {
-            let acc: [u32; 5] = core::array::from_fn(|i| {
-                attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
-            });
-            let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
-            span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
-                vram,
-                span,
-                (acc, step),
-                flat,
-                (plan, env),
-                (cache, SLOW),
-            );
-        })
+        self.walk(
+            BLEND || MASK_CHECK,
+            // Inlined into the row walk, which the compiler does not do by itself once the
+            // span routines write eight pixels at a time: a call per span otherwise.
+            #[inline(always)]
+            |y, (x_start, x_end), attr| {
+                let acc: [u32; 5] = core::array::from_fn(|i| {
+                    attr[i].wrapping_add(step[i].wrapping_mul(x_start as u32))
+                });
+                let span = (((y & 511) as usize) * VRAM_WIDTH, y, x_start, x_end);
+                span_pixels::<TEX, GOURAUD, RAW, BLEND, DITHER, MASK_CHECK, CACHE>(
+                    vram,
+                    span,
+                    (acc, step),
+                    flat,
+                    (plan, env),
+                    (cache, SLOW),
+                );
+            },
+        )
     }
 
     /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
