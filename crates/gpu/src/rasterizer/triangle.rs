@@ -541,8 +541,8 @@ impl PartRows {
     ) -> DrawCount {
         self.walk(
             BLEND || MASK_CHECK,
-            // Inlined into the row walk, which the compiler does not do by itself once the
-            // span routines write eight pixels at a time: a call per span otherwise.
+            // Inlined into the row walk, which the compiler stopped doing by itself when the
+            // 4-bit groups were unrolled: a call per span otherwise.
             #[inline(always)]
             |y, (x_start, x_end), attr| {
                 let acc: [u32; 5] = core::array::from_fn(|i| {
