@@ -1163,7 +1163,13 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
 
 /// [`clut4_pixels`] with the tags tracked: eight pixels' texel reads worked out at a time and
 /// handed to `track` (their halfwords' addresses in lanes, and how many of the eight are
-/// read) before they are read.
+/// read) before they are read. The eight pixels are then read with one load, blended and
+/// mask-checked in lanes and written with one store ([`super::put_shaded_lanes`]), a
+/// transparent entry (and a lane past the span, left unread) keeping the pixel's value
+/// (docs/hardware/gpu.md §6); a group that would run past VRAM's end goes pixel by pixel.
+/// The group's reads come before its writes, which pixel by pixel they do not: the two agree
+/// because with the tags tracked and no copies kept the page lies clear of the drawing area
+/// (`TextureCache::prepare`).
 #[inline(always)]
 fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
     vram: &mut [u16; VRAM_LEN],
@@ -1289,10 +1295,12 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
 
 /// [`raw15_pixels`] with the tags tracked: eight pixels' texel reads worked out at a time and
 /// handed to `track` (their halfwords' addresses in lanes, and how many of the eight are
-/// read) before they are read. When neither blending nor the mask check applies, the eight
-/// pixels are written with one store from the span's texels, a texel of 0000h (and a lane
-/// past the span, left unread as 0000h) keeping the pixel's value (docs/hardware/gpu.md §6).
-/// The group's reads then come before its writes, which pixel by pixel they do not: the two
+/// read) before they are read. The eight pixels are then written with one store from the
+/// span's texels, a texel of 0000h (and a lane past the span, left unread as 0000h) keeping
+/// the pixel's value; blended or mask-checked groups read the eight pixels with one load
+/// first and blend and check them in lanes ([`super::put_shaded_lanes`],
+/// docs/hardware/gpu.md §6). A group that would run past VRAM's end goes pixel by pixel.
+/// The group's reads come before its writes, which pixel by pixel they do not: the two
 /// agree because with the tags tracked and no copies kept the page lies clear of the drawing
 /// area (`TextureCache::prepare`). The span's whole groups come first, then the pixels left.
 #[inline(always)]
