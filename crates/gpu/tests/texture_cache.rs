@@ -847,6 +847,24 @@ proptest! {
     }
 }
 
+/// The xorshift32 sequence from `seed` (made odd): a case's VRAM contents.
+fn xorshift(seed: u32) -> impl FnMut() -> u32 {
+    let mut state = seed | 1;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 17;
+        state ^= state << 5;
+        state
+    }
+}
+
+/// A texel from `next`: 0000h (a transparent texel) one time in four, else a halfword with
+/// bit 0 set.
+fn texel_of(next: &mut impl FnMut() -> u32) -> u16 {
+    let r = next();
+    if r & 3 == 0 { 0 } else { (r >> 8) as u16 | 1 }
+}
+
 /// Upload `w` x `h` halfwords at (x, y) (GP0(A0h)), taken from `next`.
 fn upload(g: &mut Gpu, (x, y): (u32, u32), (w, h): (u32, u32), mut next: impl FnMut() -> u16) {
     g.gp0_words(&[0xA000_0000, xy(x, y), xy(w, h)]);
@@ -881,17 +899,8 @@ proptest! {
         let (mut groups, mut pixels) = (gpu(false), gpu(false));
         pixels.set_texture_cache(false);
         for g in [&mut groups, &mut pixels] {
-            let mut state = seed | 1;
-            let mut next = move || {
-                state ^= state << 13;
-                state ^= state >> 17;
-                state ^= state << 5;
-                state
-            };
-            let mut texel = || {
-                let r = next();
-                if r & 3 == 0 { 0 } else { (r >> 8) as u16 | 1 }
-            };
+            let mut next = xorshift(seed);
+            let mut texel = || texel_of(&mut next);
             upload(g, (PAGE_X, 0), (256, 256), &mut texel);
             upload(g, (0, 400), (1024, 112), || next() as u16);
             g.gp0(0xE600_0000 | u32::from(set) | u32::from(check) << 1);
@@ -972,17 +981,8 @@ proptest! {
         // The CLUT, on a line neither primitive draws.
         let clut_y = 300;
         for g in [&mut groups, &mut pixels] {
-            let mut state = seed | 1;
-            let mut next = move || {
-                state ^= state << 13;
-                state ^= state >> 17;
-                state ^= state << 5;
-                state
-            };
-            let mut texel = || {
-                let r = next();
-                if r & 3 == 0 { 0 } else { (r >> 8) as u16 | 1 }
-            };
+            let mut next = xorshift(seed);
+            let mut texel = || texel_of(&mut next);
             upload(g, (PAGE_X, 0), (256, 256), &mut texel);
             upload(g, (0, clut_y), (16, 1), &mut texel);
             upload(g, (0, 400), (1024, 112), || next() as u16);
