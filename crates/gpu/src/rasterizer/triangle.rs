@@ -1269,6 +1269,8 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
                 cache.track_slow_lanes::<3>(a, n, &mut reads);
             });
         } else {
+            // The whole groups pass LANES and the last group fewer, so each call names its
+            // routine rather than have `track_lanes` test `n` again for the last group.
             raw15_groups::<BLEND, MASK_CHECK>(vram, span, (mask_or, blend), move |a, n| {
                 if n == LANES {
                     cache.track_group::<3>(a);
