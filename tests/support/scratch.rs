@@ -2,7 +2,7 @@
 //! live in it, and it goes away with the test, so repeated runs leave nothing in the
 //! system's temporary directory. One source for every test crate of the workspace: the root
 //! package's support library includes it, and so do the `common` modules of the `wobble` and
-//! `wobble-cli` tests (by path).
+//! `wobble-cli` tests and the `mini-emulator` test (by path).
 
 use std::path::{Path, PathBuf};
 

@@ -1,4 +1,5 @@
-//! `mini-emulator [out.ppm]`: runs the loop of the library and prints what it saw.
+//! `mini-emulator [out.ppm]`: runs the loop of the library and prints what it saw; the
+//! picture goes to `out.ppm`, by default `mini_emulator.ppm` in the current directory.
 
 use std::path::PathBuf;
 
@@ -6,7 +7,7 @@ fn main() {
     let out = std::env::args()
         .nth(1)
         .map(PathBuf::from)
-        .unwrap_or_else(|| std::env::temp_dir().join("mini_emulator.ppm"));
+        .unwrap_or_else(|| PathBuf::from("mini_emulator.ppm"));
     match mini_emulator::run(&out) {
         Ok(s) => println!(
             "{} frames: GTE {} cycles, DMA {} cycles ({} waiting for FIFO room), {} CPU cycles \

@@ -1,9 +1,13 @@
 //! The emulator loop (written only against the public API of `gte` and `gpu`) runs under
 //! `cargo test` and sees what a console shows.
 
+#[path = "../../../tests/support/scratch.rs"]
+mod scratch;
+
 #[test]
 fn mini_emulator_runs() {
-    let out = std::env::temp_dir().join(format!("wobble-mini-emulator-{}.ppm", std::process::id()));
+    let dir = scratch::Scratch::new("run");
+    let out = dir.join("frame.ppm");
     let s = mini_emulator::run(&out).unwrap_or_else(|e| panic!("{e}"));
     // RTPT takes 23 cycles (docs/hardware/gte.md §1), three frames of it.
     assert_eq!(s.gte_cycles, 3 * 23);
@@ -34,5 +38,4 @@ fn mini_emulator_runs() {
     let ppm = std::fs::read(&out).expect("PPM written");
     assert!(ppm.starts_with(b"P6\n320 240\n255\n"));
     assert_eq!(ppm.len(), b"P6\n320 240\n255\n".len() + 320 * 240 * 3);
-    let _ = std::fs::remove_file(&out);
 }
