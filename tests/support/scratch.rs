@@ -72,3 +72,32 @@ fn writable(dir: &Path) {
 
 #[cfg(not(unix))]
 fn writable(_: &Path) {}
+
+#[cfg(all(test, unix))]
+mod tests {
+    use super::{Scratch, remove, writable};
+    use std::os::unix::fs::PermissionsExt;
+
+    fn mode(p: &std::path::Path) -> u32 {
+        std::fs::metadata(p).unwrap().permissions().mode() & 0o777
+    }
+
+    /// Directories made read-only get owner read, write and search back, the nested ones too,
+    /// and a read-only tree is removed whole (for a user other than root, only after that).
+    #[test]
+    fn read_only_trees_are_made_writable_and_removed() {
+        let dir = Scratch::new("read-only-tree");
+        let (a, b) = (dir.join("a"), dir.join("a").join("b"));
+        std::fs::create_dir_all(&b).unwrap();
+        std::fs::write(b.join("f"), b"x").unwrap();
+        for p in [&b, &a] {
+            std::fs::set_permissions(p, std::fs::Permissions::from_mode(0o500)).unwrap();
+        }
+        writable(&a);
+        assert_eq!((mode(&a), mode(&b)), (0o755, 0o755));
+        std::fs::set_permissions(&b, std::fs::Permissions::from_mode(0o500)).unwrap();
+        std::fs::set_permissions(&a, std::fs::Permissions::from_mode(0o500)).unwrap();
+        remove(&a);
+        assert!(!a.exists());
+    }
+}
