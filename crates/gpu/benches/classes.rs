@@ -6,7 +6,8 @@
 //! Triangles: right triangles with 24-pixel legs (about 288 pixels) at random positions in a
 //! 640x490 drawing area, random colours. Textured classes sample random UVs inside a 256x256
 //! page; the 4-bit page holds random texels 1-15 and its 16-entry CLUT random non-zero
-//! colours, the 15-bit page random non-zero texels. Lines: flat, 24 pixels along the major
+//! colours, the 15-bit page random non-zero texels. All classes but the last draw one shape
+//! of triangle; the last draws it in four orientations with its vertices in any order. Lines: flat, 24 pixels along the major
 //! axis (25 drawn). Quads: 320x240, inside the area.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
@@ -290,6 +291,42 @@ fn classes() -> Vec<Class> {
                 vertices: [corner(a), corner(b), corner(c), Vertex::default()],
                 semi_transparent: true,
                 texture: texture(CLUT, PAGE4, false),
+                ..Polygon::default()
+            };
+            w.extend_from_slice(&p.packet());
+        },
+    );
+    // Last, so that the classes above keep their words. The same triangles as the Gouraud
+    // class but for their shape: the right angle at any of the box's four corners and the
+    // vertices in any order, so that the set-up's and the rows' branches (which vertex is the
+    // middle one, which side is long, spans growing or shrinking) change from one triangle to
+    // the next as in a game's mesh, where the classes above repeat one shape.
+    class(
+        "gouraud_triangles_mixed_shapes",
+        draw_mode(none, true),
+        tri_pixels,
+        &mut |r, w| {
+            let [a, b, c] = right_triangle(r);
+            let (x0, y0) = a;
+            let flip = |(x, y): (u32, u32), fx: bool, fy: bool| {
+                (
+                    if fx { 2 * x0 + LEG - x } else { x },
+                    if fy { 2 * y0 + LEG - y } else { y },
+                )
+            };
+            let turn = r.below(4);
+            let (fx, fy) = (turn & 1 != 0, turn & 2 != 0);
+            let mut v = [flip(a, fx, fy), flip(b, fx, fy), flip(c, fx, fy)];
+            // One of the six orders of the three vertices.
+            let order = r.below(6) as usize;
+            v.swap(0, order % 3);
+            if order >= 3 {
+                v.swap(1, 2);
+            }
+            let mut corner = |(x, y)| vertex(x, y, r.color(), (0, 0));
+            let p = Polygon {
+                vertices: [corner(v[0]), corner(v[1]), corner(v[2]), Vertex::default()],
+                gouraud: true,
                 ..Polygon::default()
             };
             w.extend_from_slice(&p.packet());
