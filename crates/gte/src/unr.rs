@@ -54,15 +54,19 @@ pub const fn unr_divide(h: u16, sz3: u16) -> (u32, bool) {
     (unr_quotient(h, sz3), false)
 }
 
-/// The reciprocal seeds `T[i] + 101h` of the table, as the refinement uses them, at indices
-/// 0..=256. The array is as long as a 9-bit index can reach, so that an index computed in
-/// 16 bits and shifted right by 7 needs no bounds check; entries past 256 are never read.
-const UNR_SEEDS: [u16; 512] = {
-    let mut seeds = [0u16; 512];
-    let mut i = 0;
-    while i < 257 {
-        seeds[i] = UNR_TABLE[i] as u16 + 0x101;
-        i += 1;
+/// The reciprocal seeds `T[i] + 101h` of the table, by the top ten bits of the normalised
+/// divisor `d` (8000h..=FFFFh): entry `j` = `d >> 6` (200h..=3FFh) holds the seed of index
+/// `i` = `(d - 7FC0h) SAR 7` (docs/hardware/gte.md §6), which is `((j + 1) >> 1) - 100h` for
+/// every `d` with those top bits. Indexed by `d >> 6` alone, the seed's load waits on one
+/// shift of `d` rather than a subtraction and a shift, on RTPS's chain from SZ3 to SXY2;
+/// the array is as long as a 10-bit index reaches, so the index needs no bounds check.
+/// Entries below 200h are never read.
+const UNR_SEEDS: [u16; 1024] = {
+    let mut seeds = [0u16; 1024];
+    let mut j = 0x200;
+    while j < 0x400 {
+        seeds[j] = UNR_TABLE[((j + 1) >> 1) - 0x100] as u16 + 0x101;
+        j += 1;
     }
     seeds
 };
@@ -76,9 +80,9 @@ pub(crate) const fn unr_quotient(h: u16, sz3: u16) -> u32 {
     // compiler the operand is not 0.
     let log = (sz3 as u32 | 1).ilog2();
     let n = ((h as u64) << 15) >> log;
-    let d = ((sz3 as i64) << 15) >> log; // 8000h..=FFFFh
-    let index = ((d as u16).wrapping_sub(0x7FC0) >> 7) as usize; // 0..=256
-    let u = UNR_SEEDS[index] as i64;
+    let d = (((sz3 as u32) << 15) >> log) as u16; // 8000h..=FFFFh
+    let u = UNR_SEEDS[(d >> 6) as usize] as i64;
+    let d = d as i64;
     let d = (0x200_0080 - d * u) >> 8;
     let d = (0x80 + d * u) >> 8;
     let q = (n as i64 * d + 0x8000) >> 16;
@@ -188,6 +192,21 @@ mod tests {
         // docs/hardware/gte.md §6: FE3Fh/7F20h and F015h/780Bh reach 20000h before the clamp.
         assert_eq!(unr_divide(0xFE3F, 0x7F20), (QUOTIENT_MAX, false));
         assert_eq!(unr_divide(0xF015, 0x780B), (QUOTIENT_MAX, false));
+    }
+
+    #[test]
+    fn seeds_by_top_bits_match_the_table_index() {
+        // Every normalised divisor: the seed read by its top ten bits is the one the fact
+        // sheet's index (d - 7FC0h) SAR 7 names.
+        for d in 0x8000u32..=0xFFFF {
+            let i = ((d as i32 - 0x7FC0) >> 7) as usize;
+            assert!(i <= 256, "{d:#x}");
+            assert_eq!(
+                UNR_SEEDS[(d >> 6) as usize],
+                UNR_TABLE[i] as u16 + 0x101,
+                "{d:#x}"
+            );
+        }
     }
 
     #[test]
