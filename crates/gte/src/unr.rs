@@ -3,8 +3,9 @@
 //!
 //! Why this shape: the divide is the middle of RTPS's dependency chain (docs/performance.md,
 //! "Rows under 2x on Zen 4"), so it normalises SZ3 with one bit scan ("Store forwarding", the
-//! last row) and reads its seeds from a table padded to 512 entries with a 16-bit index, which
-//! needs no bounds check ("Straight paths and tests folded into others").
+//! last row) and reads its seeds from a table indexed by the normalised divisor's top ten
+//! bits, one shift on the chain and no bounds check ("The plain loop: the divide's seed and
+//! the dispatch").
 
 /// Overflow result and the largest quotient: 1FFFFh (docs/hardware/gte.md §6).
 pub const QUOTIENT_MAX: u32 = 0x1_FFFF;
