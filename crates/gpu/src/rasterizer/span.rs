@@ -43,6 +43,34 @@ const fn dither_lanes() -> [[[i16; LANES]; 4]; 4] {
     t
 }
 
+/// The dither offsets of [`DITHER_LANES`] split by sign for [`gouraud`], each in the high byte
+/// of a 16-bit lane: `[r][c][0]` holds `max(d, 0) << 8`, `[r][c][1]` holds `max(-d, 0) << 8`
+/// (docs/hardware/gpu.md §6).
+static DITHER_SIGNED: [[[[u16; LANES]; 2]; 4]; 4] = dither_signed();
+
+const fn dither_signed() -> [[[[u16; LANES]; 2]; 4]; 4] {
+    let mut t = [[[[0u16; LANES]; 2]; 4]; 4];
+    let mut r = 0;
+    while r < 4 {
+        let mut c = 0;
+        while c < 4 {
+            let mut k = 0;
+            while k < LANES {
+                let d = DITHER_LANES[r][c][k];
+                if d > 0 {
+                    t[r][c][0][k] = (d as u16) << 8;
+                } else {
+                    t[r][c][1][k] = (d.unsigned_abs()) << 8;
+                }
+                k += 1;
+            }
+            c += 1;
+        }
+        r += 1;
+    }
+    t
+}
+
 /// A triangle's per-pixel attribute steps (0-2 colour, 3-4 UV; 8.24, wrapping like the
 /// console's 32-bit adders) spread over the lanes of a group: lane `k` of attribute `i` is
 /// `k * step[i]`, and a group advances every lane by `8 * step[i]`.
@@ -78,12 +106,37 @@ fn to5(c: i16x8, d: i16x8) -> i16x8 {
     (c + d).max(i16x8::ZERO).min(i16x8::splat(255)) >> 3
 }
 
+/// The 16-bit top halves of eight 8.24 attribute lanes: the 8-bit integer part in the high
+/// byte, the fraction's top byte in the low one.
+#[inline(always)]
+fn top_halves(lanes: u32x8) -> u16x8 {
+    // An arithmetic shift keeps every lane in i16's range, so the signed pack is exact.
+    cast::<i16x8, u16x8>(i16x8::from_i32x8_saturate(
+        cast::<u32x8, i32x8>(lanes) >> 16,
+    ))
+}
+
+/// Eight untextured Gouraud pixels (docs/hardware/gpu.md §6): channel `i` of pixel `k` is the
+/// integer part of lane `k` of `lanes[i]`, `c`, written as `clamp(c + d, 0, 255) >> 3`, `d`
+/// the pixel's dither offset, given as its sign's two parts ([`DITHER_SIGNED`]) `raise` and
+/// `lower`. With `c` in the high byte of a 16-bit lane, the clamp is a saturating add of
+/// `raise` then a saturating subtraction of `lower` (one of them 0): a sum past 255 saturates
+/// to FFFFh, whose high byte is 255, and one under 0 to 0, while the low byte (the fraction)
+/// never carries into the high one.
+#[inline(always)]
+fn gouraud(lanes: &[u32x8; 5], (raise, lower): (u16x8, u16x8), mask_or: u16x8) -> u16x8 {
+    let channel = |l: u32x8| top_halves(l).saturating_add(raise).saturating_sub(lower);
+    let (r, g, b) = (channel(lanes[0]), channel(lanes[1]), channel(lanes[2]));
+    (r >> 11) | ((g >> 11) << 5) | ((b >> 11) << 10) | mask_or
+}
+
 /// Draw `[x_start, x_end)` of line `y` (VRAM row offset `row`), not empty, for an opaque
 /// primitive without mask check whose texture, if any, is modulated. `acc` holds the five
 /// 8.24 attributes at `x_start` (0-2 colour, 3-4 UV); `flat` is the colour when not
 /// `GOURAUD`. A texel of value 0000h leaves its pixel as it is; others keep their bit 15
 /// (docs/hardware/gpu.md §6, §7). The last group of a span stores only the pixels left: an
-/// untextured one its first and last four, two or one, a textured one pixel by pixel.
+/// untextured one its first and last four, two or one ([`gouraud_span`]), a textured one
+/// pixel by pixel.
 /// `PLAIN`: the texture window is the identity and the page lies inside VRAM without
 /// wrapping ([`plain_page`]), so the eight texel addresses are computed together. `CACHE`:
 /// texels are read through the texture cache (docs/hardware/gpu.md §10), the reads of a span
@@ -109,7 +162,9 @@ pub(super) fn draw<
     cache: &mut TextureCache,
 ) {
     let span = (row, y, x_start, x_end);
-    if TEX != super::TEX_NONE && PLAIN && CACHE == mode::TAGS && steps.slow {
+    if TEX == super::TEX_NONE {
+        gouraud_span::<DITHER>(vram, span, acc, steps, env.mask_or);
+    } else if PLAIN && CACHE == mode::TAGS && steps.slow {
         groups::<TEX, GOURAUD, DITHER, PLAIN, CACHE, true>(
             vram, span, acc, steps, flat, env, cache,
         );
@@ -120,7 +175,8 @@ pub(super) fn draw<
     }
 }
 
-/// [`draw`], with the reads of a span whose texels step slowly tracked as such when `SLOW`.
+/// [`draw`] for a textured span, with the reads of a span whose texels step slowly tracked as
+/// such when `SLOW`.
 #[inline(always)]
 fn groups<
     const TEX: u8,
@@ -138,7 +194,6 @@ fn groups<
     env: &PixelEnv,
     cache: &mut TextureCache,
 ) {
-    let textured = TEX != super::TEX_NONE;
     let mask_or = i16x8::splat(env.mask_or as i16);
     let flat = flat.map(|c| i16x8::splat(c as i16));
     let dither_row = &DITHER_LANES[(y & 3) as usize];
@@ -179,20 +234,59 @@ fn groups<
         put(vram, start, out, t);
     } else if let Some(dst) = vram.get_mut(start..).and_then(|d| d.get_mut(..n)) {
         let out = out.to_array();
-        if textured {
-            for (k, d) in dst.iter_mut().enumerate() {
-                if texel[k] != 0 {
-                    *d = out[k];
-                }
+        for (k, d) in dst.iter_mut().enumerate() {
+            if texel[k] != 0 {
+                *d = out[k];
             }
-        } else {
-            copy_ends(dst, &out);
         }
     }
 }
 
-/// One group of eight pixels of a span; `PLAIN` and `CACHE` as for [`draw`], `SLOW` as for
-/// [`groups`].
+/// [`draw`] for an untextured (Gouraud) span: the groups but the last written whole, the
+/// last (1 to 8 pixels) as its first and last four, two or one ([`copy_ends`]).
+#[inline(always)]
+fn gouraud_span<const DITHER: bool>(
+    vram: &mut [u16; VRAM_LEN],
+    (row, y, x_start, x_end): (usize, i32, i32, i32),
+    acc: [u32; 5],
+    steps: &LaneSteps,
+    mask_or: u16,
+) {
+    let mask_or = u16x8::splat(mask_or);
+    let dither = if DITHER {
+        let [raise, lower] = &DITHER_SIGNED[(y & 3) as usize][(x_start & 3) as usize];
+        (u16x8::new(*raise), u16x8::new(*lower))
+    } else {
+        (u16x8::ZERO, u16x8::ZERO)
+    };
+    // Attribute `i` of pixel `x + k` in lane `k`.
+    let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
+    let mut x = x_start;
+    while x_end - x > LANES as i32 {
+        let out = gouraud(&lanes, dither, mask_or);
+        if let Some(dst) = vram
+            .get_mut(row + x as usize..)
+            .and_then(|d| d.first_chunk_mut::<LANES>())
+        {
+            *dst = out.to_array();
+        }
+        for (l, s) in lanes.iter_mut().zip(&steps.group) {
+            *l += *s;
+        }
+        x += LANES as i32;
+    }
+    let out = gouraud(&lanes, dither, mask_or);
+    let n = (x_end - x) as usize;
+    if let Some(dst) = vram
+        .get_mut(row + x as usize..)
+        .and_then(|d| d.get_mut(..n))
+    {
+        copy_ends(dst, &out.to_array());
+    }
+}
+
+/// One group of eight pixels of a textured span; `PLAIN` and `CACHE` as for [`draw`], `SLOW`
+/// as for [`groups`].
 struct Group<
     const TEX: u8,
     const GOURAUD: bool,
@@ -216,14 +310,13 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
         lanes: &[u32x8; 5],
         n: usize,
     ) -> (u16x8, i16x8, [u16; LANES]) {
-        let textured = TEX != super::TEX_NONE;
         let [r, g, b] = if GOURAUD {
             [integer(lanes[0]), integer(lanes[1]), integer(lanes[2])]
         } else {
             flat
         };
         let mut texel = [0u16; LANES];
-        if textured && PLAIN {
+        if PLAIN {
             // The halfword holding texel (u, v) is `page + v * 1024 + u / 4` (4-bit),
             // `u / 2` (8-bit) or `u` (15-bit), the texel at bit `(u % 4) * 4` or
             // `(u % 2) * 8` of it (docs/hardware/gpu.md §7).
@@ -258,7 +351,7 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
                     _ => word,
                 };
             }
-        } else if textured {
+        } else {
             let (u, v) = (integer(lanes[3]).to_array(), integer(lanes[4]).to_array());
             for (k, t) in texel.iter_mut().enumerate().take(n) {
                 *t = env
@@ -267,17 +360,13 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
             }
         }
         let t = i16x8::new(texel.map(|t| t as i16));
-        let (cr, cg, cb) = if textured {
-            // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
-            let five = i16x8::splat(0x1F);
-            (
-                ((t & five) * r) >> 4,
-                (((t >> 5) & five) * g) >> 4,
-                (((t >> 10) & five) * b) >> 4,
-            )
-        } else {
-            (r, g, b)
-        };
+        // Modulation (docs/hardware/gpu.md §6): (t5 * c8) >> 4, then the dither.
+        let five = i16x8::splat(0x1F);
+        let (cr, cg, cb) = (
+            ((t & five) * r) >> 4,
+            (((t >> 5) & five) * g) >> 4,
+            (((t >> 10) & five) * b) >> 4,
+        );
         let out = to5(cr, dither)
             | to5(cg, dither) << 5
             | to5(cb, dither) << 10
@@ -336,7 +425,7 @@ impl PlainReads {
 /// fetches included, costs more than a few pixels one at a time.
 pub(super) const MIN_TEXTURED_PIXELS: i32 = 4;
 
-/// Copy the first `dst.len()` (1 to 7) entries of `out` to `dst` as two copies of its first
+/// Copy the first `dst.len()` (0 to 8) entries of `out` to `dst` as two copies of its first
 /// and last four, two or one entries, which may overlap.
 #[inline(always)]
 fn copy_ends(dst: &mut [u16], out: &[u16; LANES]) {
@@ -435,6 +524,40 @@ mod tests {
     use super::*;
     use crate::state::TextureWindow;
     use crate::texture::Sampler;
+
+    /// Every integer part and fraction top byte of each channel under each dither offset and
+    /// mask bit, against the formula of docs/hardware/gpu.md §6 worked in i32.
+    #[test]
+    fn gouraud_lanes_match_the_dither_formula() {
+        let expect = |c: i32, d: i32| ((c + d).clamp(0, 255) >> 3) as u16;
+        for r in 0..4 {
+            for col in 0..4 {
+                let [raise, lower] = DITHER_SIGNED[r][col];
+                let dither = (u16x8::new(raise), u16x8::new(lower));
+                for top in 0..=u16::MAX {
+                    // Lane k of channel ch has the top half `top + (k + ch) * 2301h`
+                    // (wrapping), with the fraction's low bits set in every third lane.
+                    let half = |k: u32, ch: u32| {
+                        u32::from(top.wrapping_add(((k + ch) as u16).wrapping_mul(0x2301)))
+                    };
+                    let lanes: [u32x8; 5] = core::array::from_fn(|ch| {
+                        u32x8::new(core::array::from_fn(|k| {
+                            (half(k as u32, ch as u32) << 16) | if k % 3 == 0 { 0xFFFF } else { 0 }
+                        }))
+                    });
+                    let mask = if top & 1 == 0 { 0 } else { 0x8000 };
+                    let out = gouraud(&lanes, dither, u16x8::splat(mask)).to_array();
+                    for (k, &px) in out.iter().enumerate() {
+                        let d = DITHER_MATRIX[r][(col + k) & 3];
+                        let c = |ch: u32| (half(k as u32, ch) >> 8) as i32;
+                        let want =
+                            expect(c(0), d) | expect(c(1), d) << 5 | expect(c(2), d) << 10 | mask;
+                        assert_eq!(px, want, "row {r} column {col} lane {k} top {top:04x}");
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn texture_page_footprints() {
