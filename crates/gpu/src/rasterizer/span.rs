@@ -50,23 +50,17 @@ static DITHER_SIGNED: [[[[u16; LANES]; 2]; 4]; 4] = dither_signed();
 
 const fn dither_signed() -> [[[[u16; LANES]; 2]; 4]; 4] {
     let mut t = [[[[0u16; LANES]; 2]; 4]; 4];
-    let mut r = 0;
-    while r < 4 {
-        let mut c = 0;
-        while c < 4 {
-            let mut k = 0;
-            while k < LANES {
-                let d = DITHER_LANES[r][c][k];
-                if d > 0 {
-                    t[r][c][0][k] = (d as u16) << 8;
-                } else {
-                    t[r][c][1][k] = (d.unsigned_abs()) << 8;
-                }
-                k += 1;
-            }
-            c += 1;
+    // Every lane of every cell of DITHER_LANES, by one index.
+    let mut i = 0;
+    while i < 4 * 4 * LANES {
+        let (r, c, k) = (i / (4 * LANES), i / LANES % 4, i % LANES);
+        let d = DITHER_LANES[r][c][k];
+        if d > 0 {
+            t[r][c][0][k] = (d as u16) << 8;
+        } else {
+            t[r][c][1][k] = (d.unsigned_abs()) << 8;
         }
-        r += 1;
+        i += 1;
     }
     t
 }
