@@ -118,7 +118,7 @@ fn top_halves(lanes: u32x8) -> u16x8 {
 /// to FFFFh, whose high byte is 255, and one under 0 to 0, while the low byte (the fraction)
 /// never carries into the high one.
 #[inline(always)]
-fn gouraud(lanes: &[u32x8; 5], (raise, lower): (u16x8, u16x8), mask_or: u16x8) -> u16x8 {
+fn gouraud(lanes: &[u32x8; 3], (raise, lower): (u16x8, u16x8), mask_or: u16x8) -> u16x8 {
     let channel = |l: u32x8| top_halves(l).saturating_add(raise).saturating_sub(lower);
     let (r, g, b) = (channel(lanes[0]), channel(lanes[1]), channel(lanes[2]));
     (r >> 11) | ((g >> 11) << 5) | ((b >> 11) << 10) | mask_or
@@ -253,8 +253,8 @@ fn gouraud_span<const DITHER: bool>(
     } else {
         (u16x8::ZERO, u16x8::ZERO)
     };
-    // Attribute `i` of pixel `x + k` in lane `k`.
-    let mut lanes: [u32x8; 5] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
+    // Colour `i` of pixel `x + k` in lane `k`.
+    let mut lanes: [u32x8; 3] = core::array::from_fn(|i| u32x8::splat(acc[i]) + steps.offset[i]);
     let mut x = x_start;
     while x_end - x > LANES as i32 {
         let out = gouraud(&lanes, dither, mask_or);
@@ -534,7 +534,7 @@ mod tests {
                     let half = |k: u32, ch: u32| {
                         u32::from(top.wrapping_add(((k + ch) as u16).wrapping_mul(0x2301)))
                     };
-                    let lanes: [u32x8; 5] = core::array::from_fn(|ch| {
+                    let lanes: [u32x8; 3] = core::array::from_fn(|ch| {
                         u32x8::new(core::array::from_fn(|k| {
                             (half(k as u32, ch as u32) << 16) | if k % 3 == 0 { 0xFFFF } else { 0 }
                         }))
