@@ -365,6 +365,39 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
+/// The triangle classes whose spans have an AVX2 build (`Gpu::set_avx2`).
+const BUILT_FOR_AVX2: [&str; 2] = [
+    "clut4_textured_gouraud_dithered",
+    "raw15_textured_triangles",
+];
+
+/// Those classes in the two builds of their span loops, side by side: the baseline build,
+/// then the AVX2 one, which runs only on an x86-64 host with AVX2 and the `std` feature
+/// (`cargo bench -p gpu --features std --bench classes -- build`).
+fn builds(c: &mut Criterion) {
+    let mut rng = Rng(0x9E37_79B9);
+    let base = setup(&mut rng);
+    if !base.clone().set_avx2(true) {
+        println!("build: the AVX2 build cannot run here (no AVX2, or no `std` feature)");
+        return;
+    }
+    let mut group = c.benchmark_group("build");
+    group.throughput(Throughput::Elements(PRIMITIVES as u64));
+    for class in classes()
+        .into_iter()
+        .filter(|c| BUILT_FOR_AVX2.contains(&c.name))
+    {
+        for avx2 in [false, true] {
+            let mut g = base.clone();
+            assert_eq!(g.set_avx2(avx2), avx2);
+            g.gp0(class.e1);
+            let name = format!("{}/{}", class.name, if avx2 { "avx2" } else { "baseline" });
+            group.bench_function(name, |b| b.iter(|| g.gp0_words(black_box(&class.words))));
+        }
+    }
+    group.finish();
+}
+
 /// The store floor of the two classes bound by writing pixels: the same quads and flat
 /// triangles (positions and colours from the class's own words) written into a 1024x512
 /// halfword array as plain row fills, with no GPU: no decode, no edge walk, no clip, no
@@ -413,5 +446,5 @@ fn floor(c: &mut Criterion) {
     black_box(&vram);
 }
 
-criterion_group!(benches, bench, floor);
+criterion_group!(benches, bench, builds, floor);
 criterion_main!(benches);

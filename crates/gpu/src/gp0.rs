@@ -684,7 +684,7 @@ impl Gpu {
             &mut self.clut,
             cache,
             &tri,
-            rows,
+            (rows, self.host),
         );
         let mut units =
             clut_units.saturating_add(Cost::triangle(false, gouraud, textured, read_back, drawn));
@@ -695,7 +695,7 @@ impl Gpu {
                 &mut self.clut,
                 cache,
                 second,
-                rows,
+                (rows, self.host),
             );
             units = units.saturating_add(Cost::triangle(true, gouraud, textured, read_back, drawn));
         }

@@ -26,10 +26,14 @@
 //! assert_eq!(&rgb[..3], &[255, 0, 0]);
 //! ```
 #![no_std]
-#![forbid(unsafe_code)]
+// The one `unsafe` is the call of the span loops' AVX2 build where the host has AVX2
+// (`rasterizer::triangle`, `host_cpu`).
+#![deny(unsafe_code)]
 #![deny(missing_docs, rustdoc::broken_intra_doc_links)]
 
 extern crate alloc;
+#[cfg(feature = "std")]
+extern crate std;
 
 pub mod bus;
 mod color;
@@ -44,6 +48,7 @@ pub mod encode;
 mod frame;
 mod gp0;
 pub mod gp1;
+mod host_cpu;
 mod ordering_table;
 #[cfg(feature = "precise")]
 pub mod precise;
@@ -177,6 +182,8 @@ pub struct Gpu {
     texture_disable_allowed: bool,
     drawing: drawing::Drawing,
     timing: timing::Timing,
+    #[cfg_attr(feature = "serde", serde(skip))]
+    host: host_cpu::HostCpu,
     /// Last, so the other fields lead a serialized state.
     vram: Vram,
 }
@@ -208,12 +215,29 @@ impl Gpu {
             texture_disable_allowed: false,
             drawing: drawing::Drawing::default(),
             timing: timing::Timing::new(standard),
+            host: host_cpu::HostCpu::detect(),
         }
     }
 
     /// The console region this GPU was built for (its video clock).
     pub fn video_standard(&self) -> VideoStandard {
         self.timing.standard()
+    }
+
+    /// Ask for the build of the textured triangles' span loops compiled for x86-64 with AVX2
+    /// (`true`, the x86-64-v3 level: AVX2, BMI1, BMI2, FMA, LZCNT, POPCNT) or for the
+    /// baseline instruction set; returns whether the AVX2 build now runs. It runs only where
+    /// the host has those instructions, found at run time with the `std` feature (without
+    /// it, or off x86-64, never). A new GPU starts with it wherever it can run. Both builds
+    /// are the same source: the pixels, texture cache misses and drawing times are the
+    /// same; only the host's time differs (docs/performance.md).
+    pub fn set_avx2(&mut self, on: bool) -> bool {
+        self.host.set_avx2(on)
+    }
+
+    /// Whether the textured triangles' span loops run in their AVX2 build ([`Gpu::set_avx2`]).
+    pub fn avx2(&self) -> bool {
+        self.host.avx2()
     }
 
     /// Advance time by `cpu_cycles` CPU cycles (33.8688 MHz) and report what happened: dot

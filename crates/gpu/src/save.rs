@@ -465,6 +465,7 @@ impl TryFrom<GpuFields> for Gpu {
             drawing: f.drawing,
             timing: f.timing,
             vram: f.vram,
+            host: crate::host_cpu::HostCpu::detect(),
         })
     }
 }

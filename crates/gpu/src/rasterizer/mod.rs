@@ -19,6 +19,7 @@ mod span;
 mod triangle;
 
 use crate::color::{DitheredCells, ShadeTable, blend, blend_lanes, pack555, shaded_clut4};
+use crate::host_cpu::HostCpu;
 use crate::primitive::{Line, Rectangle, Texture, Triangle};
 use crate::rows::Rows;
 use crate::state::{BlendMode, DrawState, TextureDepth};
@@ -132,6 +133,8 @@ pub(crate) struct PixelEnv<'a> {
     /// are copied from it, which the platform's block copy does with the widest stores the
     /// CPU has. Empty otherwise (see [`fill_span`]).
     pub line: &'a [u16],
+    /// Which build of the textured triangles' span loops runs.
+    pub host: HostCpu,
 }
 
 /// Shade and write one pixel (docs/hardware/gpu.md §6): texel fetch and transparency, modulation or raw
@@ -464,6 +467,7 @@ fn env<'a>(
         lut: [0; 16],
         dithered,
         line: &[],
+        host: HostCpu::default(),
     }
 }
 
@@ -492,19 +496,20 @@ fn dithered_clut4_triangle(tri: &Triangle) -> bool {
 
 /// Draw one triangle (docs/hardware/gpu.md §3): size drop, fill rule, attribute stepping, texture,
 /// blending, dithering, mask, writing only the lines `rows` keeps, texels read through
-/// `cache` when it is on (§10). Returns what was drawn.
+/// `cache` when it is on (§10), its spans in the build `host` chooses. Returns what was drawn.
 pub(crate) fn draw_triangle_rows(
     vram: &mut Vram,
     state: &DrawState,
     clut: &mut ClutCache,
     cache: &mut TextureCache,
     tri: &Triangle,
-    rows: Rows,
+    (rows, host): (Rows, HostCpu),
 ) -> DrawCount {
     let vram = vram.as_array_mut();
     let line;
     let dithered = dithered_clut4_triangle(tri).then_some(tri);
     let mut env = env(vram, state, clut, tri.texture.as_ref(), tri.blend, dithered);
+    env.host = host;
     if tri.texture.is_none()
         && !tri.gouraud
         && !tri.dither
@@ -589,6 +594,7 @@ pub(crate) fn draw_gouraud_triangle_rows(
         lut: [0; 16],
         dithered: None,
         line: &[],
+        host: HostCpu::default(),
     };
     if tri.dither {
         triangle::draw_inline::<TEX_NONE, { mode::OFF }, true, false, false, true, false>(
@@ -741,6 +747,7 @@ pub(crate) fn draw_line_rows(
         lut: [0; 16],
         dithered: None,
         line: &[],
+        host: HostCpu::default(),
     };
     let (g, b, d, m) = (
         line.gouraud,

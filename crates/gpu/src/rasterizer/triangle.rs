@@ -442,24 +442,46 @@ impl PartRows {
         let inside = a.x.min(b.x).min(c.x) >= left && a.x.max(b.x).max(c.x) <= right;
         let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
         match (inside, plain) {
-            (true, false) => {
-                self.draw::<TEX, GOURAUD, DITHER, false, false, CACHE>(vram, step, flat, env, cache)
-            }
-            (false, false) => {
-                self.draw::<TEX, GOURAUD, DITHER, true, false, CACHE>(vram, step, flat, env, cache)
-            }
-            (true, true) => {
-                self.draw::<TEX, GOURAUD, DITHER, false, true, CACHE>(vram, step, flat, env, cache)
-            }
-            (false, true) => {
-                self.draw::<TEX, GOURAUD, DITHER, true, true, CACHE>(vram, step, flat, env, cache)
-            }
+            (true, false) => self.draw_built::<TEX, GOURAUD, DITHER, false, false, CACHE>(
+                vram, step, flat, env, cache,
+            ),
+            (false, false) => self.draw_built::<TEX, GOURAUD, DITHER, true, false, CACHE>(
+                vram, step, flat, env, cache,
+            ),
+            (true, true) => self.draw_built::<TEX, GOURAUD, DITHER, false, true, CACHE>(
+                vram, step, flat, env, cache,
+            ),
+            (false, true) => self.draw_built::<TEX, GOURAUD, DITHER, true, true, CACHE>(
+                vram, step, flat, env, cache,
+            ),
         }
     }
 
-    /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
-    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel, slowly
-    /// (`steps_slowly`) when `SLOW`; returns what was drawn.
+    /// [`PartRows::raw15`] in the build `avx2` chooses: the AVX2 one where the host has the
+    /// instructions ([`crate::host_cpu::HostCpu::avx2`]), else the baseline one; the same pixels either way.
+    #[inline(always)]
+    fn raw15_built<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        duv: (u32, u32),
+        page: (usize, &mut TextureCache),
+        (mask, avx2): ((u16, BlendMode), bool),
+    ) -> DrawCount {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if avx2 {
+            // SAFETY: `raw15_avx2` needs the instruction sets of its `target_feature` list,
+            // and `avx2` comes from `HostCpu::avx2`, true only once `host_cpu`'s detection
+            // has found every one of them on this host.
+            #[allow(unsafe_code)]
+            return unsafe {
+                self.raw15_avx2::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
+            };
+        }
+        let _ = avx2;
+        self.raw15::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
+    }
+
+    /// [`PartRows::raw15_rows`], the baseline build.
     #[inline(never)]
     fn raw15<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
         self,
@@ -468,20 +490,53 @@ impl PartRows {
         page: (usize, &mut TextureCache),
         mask: (u16, BlendMode),
     ) -> DrawCount {
+        self.raw15_rows::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
+    }
+
+    /// [`PartRows::raw15_rows`] built for x86-64 with AVX2 ([`crate::host_cpu`]).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[inline(never)]
+    #[target_feature(enable = "avx2,bmi1,bmi2,fma,lzcnt,popcnt")]
+    fn raw15_avx2<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        duv: (u32, u32),
+        page: (usize, &mut TextureCache),
+        mask: (u16, BlendMode),
+    ) -> DrawCount {
+        self.raw15_rows::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
+    }
+
+    /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
+    /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel, slowly
+    /// (`steps_slowly`) when `SLOW`; returns what was drawn.
+    #[inline(always)]
+    fn raw15_rows<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        duv: (u32, u32),
+        page: (usize, &mut TextureCache),
+        mask: (u16, BlendMode),
+    ) -> DrawCount {
         let (page, cache) = page;
-        self.walk(BLEND || MASK_CHECK, |y, (x_start, x_end), attr| {
-            let row = ((y & 511) as usize) * VRAM_WIDTH;
-            let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
-            let uv = (at(3, duv.0), at(4, duv.1));
-            raw15_span::<BLEND, MASK_CHECK, CACHE>(
-                vram,
-                (row, x_start, x_end),
-                uv,
-                duv,
-                (page, &mut *cache, SLOW),
-                mask,
-            );
-        })
+        self.walk(
+            BLEND || MASK_CHECK,
+            // Inlined into each build's row walk (a call per span otherwise).
+            #[inline(always)]
+            |y, (x_start, x_end), attr| {
+                let row = ((y & 511) as usize) * VRAM_WIDTH;
+                let at = |i: usize, d: u32| attr[i].wrapping_add(d.wrapping_mul(x_start as u32));
+                let uv = (at(3, duv.0), at(4, duv.1));
+                raw15_span::<BLEND, MASK_CHECK, CACHE>(
+                    vram,
+                    (row, x_start, x_end),
+                    uv,
+                    duv,
+                    (page, &mut *cache, SLOW),
+                    mask,
+                );
+            },
+        )
     }
 
     /// Walk the rows: for each whose span `[x_start, x_end)` (clipped) is not empty, count
@@ -561,10 +616,86 @@ impl PartRows {
         )
     }
 
+    /// [`PartRows::draw`] in the build `env.host` chooses for textured spans: the AVX2 one
+    /// where the host has the instructions ([`crate::host_cpu::HostCpu::avx2`]), else the baseline one; the
+    /// same pixels either way. Untextured spans take the baseline build.
+    #[inline(always)]
+    fn draw_built<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const DITHER: bool,
+        const CLIP: bool,
+        const PLAIN: bool,
+        const CACHE: u8,
+    >(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        step: [u32; 5],
+        flat: [i32; 3],
+        env: &PixelEnv,
+        cache: &mut TextureCache,
+    ) -> u32 {
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        if TEX != TEX_NONE && env.host.avx2() {
+            // SAFETY: `draw_avx2` needs the instruction sets of its `target_feature` list,
+            // and `HostCpu::avx2` is true only once `host_cpu`'s detection has found every
+            // one of them on this host.
+            #[allow(unsafe_code)]
+            return unsafe {
+                self.draw_avx2::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(
+                    vram, step, flat, env, cache,
+                )
+            };
+        }
+        self.draw_baseline::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
+    }
+
+    /// [`PartRows::draw`], the baseline build.
+    #[inline(never)]
+    fn draw_baseline<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const DITHER: bool,
+        const CLIP: bool,
+        const PLAIN: bool,
+        const CACHE: u8,
+    >(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        step: [u32; 5],
+        flat: [i32; 3],
+        env: &PixelEnv,
+        cache: &mut TextureCache,
+    ) -> u32 {
+        self.draw::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
+    }
+
+    /// [`PartRows::draw`] built for x86-64 with AVX2 ([`crate::host_cpu`]).
+    #[cfg(all(feature = "std", target_arch = "x86_64"))]
+    #[inline(never)]
+    #[target_feature(enable = "avx2,bmi1,bmi2,fma,lzcnt,popcnt")]
+    fn draw_avx2<
+        const TEX: u8,
+        const GOURAUD: bool,
+        const DITHER: bool,
+        const CLIP: bool,
+        const PLAIN: bool,
+        const CACHE: u8,
+    >(
+        self,
+        vram: &mut [u16; VRAM_LEN],
+        step: [u32; 5],
+        flat: [i32; 3],
+        env: &PixelEnv,
+        cache: &mut TextureCache,
+    ) -> u32 {
+        self.draw::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
+    }
+
     /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
     /// `step` per pixel; returns the pixels drawn. Textured spans under
     /// [`span::MIN_TEXTURED_PIXELS`] go pixel by pixel.
-    #[inline(never)]
+    #[inline(always)]
     fn draw<
         const TEX: u8,
         const GOURAUD: bool,
@@ -753,10 +884,21 @@ pub(super) fn draw_inline<
         let d = match (plan.raw15_page, slow) {
             (Some(page), slow) => {
                 let (duv, mask) = ((step[3], step[4]), (env.mask_or, env.blend));
+                let mask = (mask, env.host.avx2());
                 if slow {
-                    walk.raw15::<BLEND, MASK_CHECK, CACHE, true>(vram, duv, (page, cache), mask)
+                    walk.raw15_built::<BLEND, MASK_CHECK, CACHE, true>(
+                        vram,
+                        duv,
+                        (page, cache),
+                        mask,
+                    )
                 } else {
-                    walk.raw15::<BLEND, MASK_CHECK, CACHE, false>(vram, duv, (page, cache), mask)
+                    walk.raw15_built::<BLEND, MASK_CHECK, CACHE, false>(
+                        vram,
+                        duv,
+                        (page, cache),
+                        mask,
+                    )
                 }
             }
             (None, true) => walk
