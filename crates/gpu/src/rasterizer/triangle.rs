@@ -392,6 +392,45 @@ struct PartRows {
     attr_step: [u32; 5],
 }
 
+/// One of [`PartRows`]'s row loops, `$rows`, in two builds (`crate::host_cpu`): `$base`
+/// compiled for the baseline instruction set and, with the `std` feature on x86-64, `$avx2`
+/// compiled for x86-64-v3 (AVX2, BMI1, BMI2, FMA, LZCNT, POPCNT); `$built` runs the second
+/// when its `avx2` says the host has those instructions, else the first. The same source, so
+/// the same pixels either way.
+macro_rules! two_builds {
+    ($built:ident, $base:ident, $avx2:ident => $rows:ident
+        <$(const $g:ident: $gt:ty),*> ($($p:ident: $pt:ty),*) -> $ret:ty) => {
+        #[doc = concat!("[`PartRows::", stringify!($rows), "`] in the build `avx2` chooses.")]
+        #[inline(always)]
+        fn $built<$(const $g: $gt),*>(self, avx2: bool, $($p: $pt),*) -> $ret {
+            #[cfg(all(feature = "std", target_arch = "x86_64"))]
+            if avx2 {
+                // SAFETY: the AVX2 build needs the instruction sets of its `target_feature`
+                // list, and `avx2` is `HostCpu::avx2`, true only once `host_cpu`'s detection
+                // has found every one of them on this host.
+                #[allow(unsafe_code)]
+                return unsafe { self.$avx2::<$($g),*>($($p),*) };
+            }
+            let _ = avx2;
+            self.$base::<$($g),*>($($p),*)
+        }
+
+        #[doc = concat!("[`PartRows::", stringify!($rows), "`], the baseline build.")]
+        #[inline(never)]
+        fn $base<$(const $g: $gt),*>(self, $($p: $pt),*) -> $ret {
+            self.$rows::<$($g),*>($($p),*)
+        }
+
+        #[doc = concat!("[`PartRows::", stringify!($rows), "`] built for x86-64-v3.")]
+        #[cfg(all(feature = "std", target_arch = "x86_64"))]
+        #[inline(never)]
+        #[target_feature(enable = "avx2,bmi1,bmi2,fma,lzcnt,popcnt")]
+        fn $avx2<$(const $g: $gt),*>(self, $($p: $pt),*) -> $ret {
+            self.$rows::<$($g),*>($($p),*)
+        }
+    };
+}
+
 impl PartRows {
     /// The `count` rows of `part` from row `start`, `stride` apart, the attributes `attrs`
     /// at column 0 of each.
@@ -441,71 +480,32 @@ impl PartRows {
         let (left, right) = self.clip;
         let inside = a.x.min(b.x).min(c.x) >= left && a.x.max(b.x).max(c.x) <= right;
         let plain = TEX != TEX_NONE && span::plain_page(&env.sampler, TEX).is_some();
+        // Untextured spans take the baseline build.
+        let avx2 = TEX != TEX_NONE && env.host.avx2();
         match (inside, plain) {
             (true, false) => self.draw_built::<TEX, GOURAUD, DITHER, false, false, CACHE>(
-                vram, step, flat, env, cache,
+                avx2, vram, step, flat, env, cache,
             ),
             (false, false) => self.draw_built::<TEX, GOURAUD, DITHER, true, false, CACHE>(
-                vram, step, flat, env, cache,
+                avx2, vram, step, flat, env, cache,
             ),
             (true, true) => self.draw_built::<TEX, GOURAUD, DITHER, false, true, CACHE>(
-                vram, step, flat, env, cache,
+                avx2, vram, step, flat, env, cache,
             ),
             (false, true) => self.draw_built::<TEX, GOURAUD, DITHER, true, true, CACHE>(
-                vram, step, flat, env, cache,
+                avx2, vram, step, flat, env, cache,
             ),
         }
     }
 
-    /// [`PartRows::raw15`] in the build `avx2` chooses: the AVX2 one where the host has the
-    /// instructions ([`crate::host_cpu::HostCpu::avx2`]), else the baseline one; the same pixels either way.
-    #[inline(always)]
-    fn raw15_built<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
-        self,
+    two_builds!(raw15_built, raw15, raw15_avx2 => raw15_rows<
+        const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool
+    >(
         vram: &mut [u16; VRAM_LEN],
         duv: (u32, u32),
         page: (usize, &mut TextureCache),
-        (mask, avx2): ((u16, BlendMode), bool),
-    ) -> DrawCount {
-        #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        if avx2 {
-            // SAFETY: `raw15_avx2` needs the instruction sets of its `target_feature` list,
-            // and `avx2` comes from `HostCpu::avx2`, true only once `host_cpu`'s detection
-            // has found every one of them on this host.
-            #[allow(unsafe_code)]
-            return unsafe {
-                self.raw15_avx2::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
-            };
-        }
-        let _ = avx2;
-        self.raw15::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
-    }
-
-    /// [`PartRows::raw15_rows`], the baseline build.
-    #[inline(never)]
-    fn raw15<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        duv: (u32, u32),
-        page: (usize, &mut TextureCache),
-        mask: (u16, BlendMode),
-    ) -> DrawCount {
-        self.raw15_rows::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
-    }
-
-    /// [`PartRows::raw15_rows`] built for x86-64 with AVX2 ([`crate::host_cpu`]).
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    #[inline(never)]
-    #[target_feature(enable = "avx2,bmi1,bmi2,fma,lzcnt,popcnt")]
-    fn raw15_avx2<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8, const SLOW: bool>(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        duv: (u32, u32),
-        page: (usize, &mut TextureCache),
-        mask: (u16, BlendMode),
-    ) -> DrawCount {
-        self.raw15_rows::<BLEND, MASK_CHECK, CACHE, SLOW>(vram, duv, page, mask)
-    }
+        mask: (u16, BlendMode)
+    ) -> DrawCount);
 
     /// Draw the spans of a raw 15-bit texture in a page the window and the VRAM wraps
     /// leave alone (`page`, see [`raw15_span`]), U and V stepping by `duv` per pixel, slowly
@@ -616,81 +616,20 @@ impl PartRows {
         )
     }
 
-    /// [`PartRows::draw`] in the build `env.host` chooses for textured spans: the AVX2 one
-    /// where the host has the instructions ([`crate::host_cpu::HostCpu::avx2`]), else the baseline one; the
-    /// same pixels either way. Untextured spans take the baseline build.
-    #[inline(always)]
-    fn draw_built<
+    two_builds!(draw_built, draw_baseline, draw_avx2 => draw<
         const TEX: u8,
         const GOURAUD: bool,
         const DITHER: bool,
         const CLIP: bool,
         const PLAIN: bool,
-        const CACHE: u8,
+        const CACHE: u8
     >(
-        self,
         vram: &mut [u16; VRAM_LEN],
         step: [u32; 5],
         flat: [i32; 3],
         env: &PixelEnv,
-        cache: &mut TextureCache,
-    ) -> u32 {
-        #[cfg(all(feature = "std", target_arch = "x86_64"))]
-        if TEX != TEX_NONE && env.host.avx2() {
-            // SAFETY: `draw_avx2` needs the instruction sets of its `target_feature` list,
-            // and `HostCpu::avx2` is true only once `host_cpu`'s detection has found every
-            // one of them on this host.
-            #[allow(unsafe_code)]
-            return unsafe {
-                self.draw_avx2::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(
-                    vram, step, flat, env, cache,
-                )
-            };
-        }
-        self.draw_baseline::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
-    }
-
-    /// [`PartRows::draw`], the baseline build.
-    #[inline(never)]
-    fn draw_baseline<
-        const TEX: u8,
-        const GOURAUD: bool,
-        const DITHER: bool,
-        const CLIP: bool,
-        const PLAIN: bool,
-        const CACHE: u8,
-    >(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        step: [u32; 5],
-        flat: [i32; 3],
-        env: &PixelEnv,
-        cache: &mut TextureCache,
-    ) -> u32 {
-        self.draw::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
-    }
-
-    /// [`PartRows::draw`] built for x86-64 with AVX2 ([`crate::host_cpu`]).
-    #[cfg(all(feature = "std", target_arch = "x86_64"))]
-    #[inline(never)]
-    #[target_feature(enable = "avx2,bmi1,bmi2,fma,lzcnt,popcnt")]
-    fn draw_avx2<
-        const TEX: u8,
-        const GOURAUD: bool,
-        const DITHER: bool,
-        const CLIP: bool,
-        const PLAIN: bool,
-        const CACHE: u8,
-    >(
-        self,
-        vram: &mut [u16; VRAM_LEN],
-        step: [u32; 5],
-        flat: [i32; 3],
-        env: &PixelEnv,
-        cache: &mut TextureCache,
-    ) -> u32 {
-        self.draw::<TEX, GOURAUD, DITHER, CLIP, PLAIN, CACHE>(vram, step, flat, env, cache)
-    }
+        cache: &mut TextureCache
+    ) -> u32);
 
     /// Draw the spans in eight-pixel groups (see [`span::draw`]), the attributes stepping by
     /// `step` per pixel; returns the pixels drawn. Textured spans under
@@ -884,9 +823,10 @@ pub(super) fn draw_inline<
         let d = match (plan.raw15_page, slow) {
             (Some(page), slow) => {
                 let (duv, mask) = ((step[3], step[4]), (env.mask_or, env.blend));
-                let mask = (mask, env.host.avx2());
+                let avx2 = env.host.avx2();
                 if slow {
                     walk.raw15_built::<BLEND, MASK_CHECK, CACHE, true>(
+                        avx2,
                         vram,
                         duv,
                         (page, cache),
@@ -894,6 +834,7 @@ pub(super) fn draw_inline<
                     )
                 } else {
                     walk.raw15_built::<BLEND, MASK_CHECK, CACHE, false>(
+                        avx2,
                         vram,
                         duv,
                         (page, cache),
