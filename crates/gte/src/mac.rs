@@ -157,6 +157,43 @@ pub(crate) fn color_entry(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
     packed
 }
 
+/// FLAG bits of colours 1-3 by the mask of those inside their range (bit n - 1 for colour n).
+const COLOR_FLAGS: [u32; 8] = {
+    let mut table = [0; 8];
+    let mut mask = 0;
+    while mask < 8 {
+        let mut n = 1;
+        while n <= 3 {
+            if mask >> (n - 1) & 1 == 0 {
+                table[mask] |= bit::color(n);
+            }
+            n += 1;
+        }
+        mask += 1;
+    }
+    table
+};
+
+/// [`color_entry`] with the three channels side by side as the lanes of one vector, with no
+/// branch: Cn = clamp(MACn SAR 4, 0, FFh) is MACn SAR 4 narrowed with signed saturation to 16
+/// bits, then with unsigned saturation to 8 (each narrowing clamps to exactly that range, and
+/// the first keeps the sign the second clamps to 0), and Cn is inside its range exactly when
+/// MACn SAR 12 is 0. For commands whose colours leave the range on a large share of calls
+/// (GPF, GPL), where a clamp per channel is a branch that goes either way (docs/performance.md,
+/// "Colours in vector lanes").
+#[inline(always)]
+pub(crate) fn color_entry_lanes(flags: &mut u32, mac: [i32; 3], code: u32) -> u32 {
+    use wide::{i16x8, i32x4, i32x8, u8x16};
+    let [m1, m2, m3] = mac;
+    let quarters = i32x8::new([m1, m2, m3, 0, 0, 0, 0, 0]) >> 4i32;
+    let bytes = u8x16::narrow_i16x8(i16x8::from_i32x8_saturate(quarters), i16x8::ZERO);
+    let inside = (i32x4::new([m1, m2, m3, 0]) >> 12i32).simd_eq(i32x4::ZERO);
+    *flags |= COLOR_FLAGS[(inside.to_bitmask() & 7) as usize];
+    // The fourth lane holds 0, and so its byte.
+    let [r, g, b, zero, ..] = bytes.to_array();
+    code | u32::from_le_bytes([r, g, b, zero])
+}
+
 /// [`color_entry`] for MAC values that seldom leave the colour range: Cn lies inside
 /// 0..=FFh exactly when MACn lies in 0..=FFFh, so the three channels are one test
 /// ([`all_within_32`]) and the saturation is kept out of line.
@@ -467,12 +504,16 @@ impl Gte {
 mod tests {
     use super::*;
 
-    /// The grouped colour test against each channel clamped on its own, with every
-    /// channel at and around the edges of 0..=FFFh and the other two anywhere among them.
+    /// The grouped colour test and the colour lanes against each channel clamped on its own
+    /// (docs/hardware/gte.md §4), with every channel at and around the edges of 0..=FFFh and
+    /// of the 16-bit range that MACn SAR 4 passes through in the lanes, the other two
+    /// anywhere among them.
     #[test]
-    fn color_entry_rare_matches_each_channel() {
+    fn color_entries_match_each_channel() {
         let edges = [
             i32::MIN,
+            -0x8_0010,
+            -0x8_0000,
             -0x10,
             -1,
             0,
@@ -481,6 +522,8 @@ mod tests {
             0xFFF,
             0x1000,
             0x7FFF,
+            0x7_FFF0,
+            0x8_0000,
             i32::MAX,
         ];
         for r in edges {
@@ -497,6 +540,9 @@ mod tests {
                     }
                     let mut flags = 0;
                     let packed = color_entry_rare(&mut flags, [r, g, b], 0xAB00_0000);
+                    assert_eq!((packed, flags), (expected, expected_flags), "{r} {g} {b}");
+                    let mut flags = 0;
+                    let packed = color_entry_lanes(&mut flags, [r, g, b], 0xAB00_0000);
                     assert_eq!((packed, flags), (expected, expected_flags), "{r} {g} {b}");
                 }
             }
