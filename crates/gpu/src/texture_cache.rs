@@ -94,15 +94,15 @@ pub(crate) fn steps_slowly<const TEX: u8>((du, dv): (u32, u32)) -> bool {
 /// but the span's own reads touches the cache while it is in use.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SlowReads {
-    /// The tag of the span's latest read, [`INVALID`] before the first.
-    last: u32,
+    /// No read of the span has been tracked yet.
+    first: bool,
 }
 
 impl SlowReads {
     /// A span before its first read.
     #[inline(always)]
     pub(crate) const fn new() -> Self {
-        Self { last: INVALID }
+        Self { first: true }
     }
 }
 
@@ -535,37 +535,50 @@ impl TextureCache {
     }
 
     /// [`TextureCache::track_lanes`] for the next reads of `span`, a span whose texels step
-    /// slowly ([`steps_slowly`]). A read with the tag of the read just before it is a hit
-    /// that changes nothing: the entry of that tag holds it since that read
-    /// (docs/hardware/gpu.md §10), and nothing but the span's reads touches the cache in
-    /// between. Only the lanes whose tag differs from the lane before them (lane 0 from the
-    /// span's latest read) are looked up.
+    /// slowly ([`steps_slowly`]); `before` holds the address of the read just before each
+    /// lane's in the span (the lane before it, or for lane 0 the previous group's last
+    /// read). A read with the tag of the read just before it is a hit that changes nothing:
+    /// the entry of that tag holds it since that read (docs/hardware/gpu.md §10), and nothing
+    /// but the span's reads touches the cache in between. Only the lanes whose tag differs
+    /// from their `before`'s, and the span's first read, are looked up.
+    ///
+    /// `before` comes from the span's texel coordinates one pixel back, not from the reads
+    /// tracked before, so which lanes are looked up is known without waiting on the previous
+    /// group. The two lowest such lanes are looked up with no test of how many there are: a
+    /// group with fewer looks its one such lane up twice, or its lane 0, whose tag has been
+    /// in its entry since the read before it (hits that change nothing); the rest, where a
+    /// group has more than two, one by one.
     #[inline(always)]
     pub(crate) fn track_slow_lanes<const TEX: u8>(
         &mut self,
         address: wide::u32x8,
+        before: wide::u32x8,
         n: usize,
         span: &mut SlowReads,
     ) {
-        let last = &mut span.last;
         let tags = address >> 2u32;
-        let t = tags.to_array();
-        let before = wide::u32x8::new([*last, t[0], t[1], t[2], t[3], t[4], t[5], t[6]]);
         let valid = (1u32 << n.min(LANES)) - 1;
-        let mut changed = !tags.simd_eq(before).to_bitmask() & valid;
-        if n > 0 {
-            *last = t[(n - 1) & (LANES - 1)];
-        }
-        if changed == 0 {
-            return;
-        }
+        let mut changed =
+            (!tags.simd_eq(before >> 2u32).to_bitmask() | u32::from(span.first)) & valid;
+        span.first = false;
+        let t = tags.to_array();
         let entry = entry_index_lanes::<TEX>(address).to_array();
         let mut misses = 0;
-        while changed != 0 {
-            let k = changed.trailing_zeros() as usize & (LANES - 1);
+        let mut look_up = |k: usize| {
+            let k = k & (LANES - 1);
             let slot = &mut self.tags[entry[k] as usize & (ENTRIES - 1)];
             misses += u32::from(*slot != t[k]);
             *slot = t[k];
+        };
+        let lowest = |m: u32, or: u32| if m != 0 { m.trailing_zeros() } else { or };
+        let k1 = lowest(changed, 0);
+        changed &= changed.wrapping_sub(1);
+        let k2 = lowest(changed, k1);
+        changed &= changed.wrapping_sub(1);
+        look_up(k1 as usize);
+        look_up(k2 as usize);
+        while changed != 0 {
+            look_up(changed.trailing_zeros() as usize);
             changed &= changed - 1;
         }
         self.misses = self.misses.wrapping_add(misses);
@@ -780,12 +793,18 @@ mod tests {
                 let (first, second) = reads.split_at(reads.len() / 2);
                 for span in [first, second] {
                     let mut reads = SlowReads::new();
-                    for group in span.chunks(8) {
+                    for (g, group) in span.chunks(8).enumerate() {
                         let mut a = [0u32; 8];
                         a[..group.len()].copy_from_slice(group);
-                        let a = wide::u32x8::new(a);
+                        // Each read's previous one. The span's first has none: it is given
+                        // its own address, so only the span's start has it looked up.
+                        let b = core::array::from_fn(|k| {
+                            let i = (g * 8 + k).saturating_sub(1);
+                            span.get(i).copied().unwrap_or(0)
+                        });
+                        let (a, b) = (wide::u32x8::new(a), wide::u32x8::new(b));
                         if slow {
-                            lanes.track_slow_lanes::<TEX>(a, group.len(), &mut reads);
+                            lanes.track_slow_lanes::<TEX>(a, b, group.len(), &mut reads);
                         } else {
                             lanes.track_lanes::<TEX>(a, group.len());
                         }

@@ -1,7 +1,8 @@
 //! Whole-pipeline frames: the default scene (as is, and tessellated two levels) and a
 //! 3,000-triangle textured, lit sphere (half of it facing away) and a 3,042-triangle textured,
 //! lit wall (all of it drawn) at 320x240. Besides criterion's frame times, prints the mean split between the GTE stage,
-//! the OT build and the GPU over 500 frames.
+//! the OT build and the GPU over 500 frames. The `texture_cache` group times the default
+//! scene's frames with the GPU's texture cache on and off.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
@@ -150,5 +151,32 @@ fn frames(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, frames);
+/// The default scene's frames with the GPU's texture cache on (as on the console) and off,
+/// side by side: what the cache's tag tracking costs on textures drawn near their size,
+/// whose reads step slowly (docs/gpu.md, "Texture cache").
+fn texture_cache(c: &mut Criterion) {
+    let mut group = c.benchmark_group("texture_cache");
+    for on in [true, false] {
+        let options = PipelineOptions {
+            texture_cache: on,
+            ..PipelineOptions::default()
+        };
+        let mut r = Renderer::new(Scene::default_scene(), options).unwrap();
+        let mut frame = 0;
+        let name = if on {
+            "default_scene/on"
+        } else {
+            "default_scene/off"
+        };
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                frame += 1;
+                black_box(r.render_frame(frame))
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, frames, texture_cache);
 criterion_main!(benches);

@@ -72,6 +72,8 @@ const fn dither_signed() -> [[[[u16; LANES]; 2]; 4]; 4] {
 pub(super) struct LaneSteps {
     offset: [u32x8; 5],
     group: [u32x8; 5],
+    /// Every lane of U and V one pixel's step: a pixel's less these are the pixel before it.
+    pixel_uv: (u32x8, u32x8),
     /// The texels step slowly ([`steps_slowly`]).
     slow: bool,
 }
@@ -83,6 +85,7 @@ impl LaneSteps {
         Self {
             offset: step.map(|s| u32x8::new(core::array::from_fn(|k| s.wrapping_mul(k as u32)))),
             group: step.map(|s| u32x8::splat(s.wrapping_mul(LANES as u32))),
+            pixel_uv: (u32x8::splat(step[3]), u32x8::splat(step[4])),
             slow: TEX != super::TEX_NONE && steps_slowly::<TEX>((step[3], step[4])),
         }
     }
@@ -201,7 +204,7 @@ fn groups<
     let mut group = |vram: &[u16; VRAM_LEN], lanes: &[u32x8; 5], n: usize| {
         Group::<TEX, GOURAUD, PLAIN, CACHE, SLOW>::shade(
             vram,
-            (&mut *cache, &mut reads),
+            (&mut *cache, &mut reads, steps.pixel_uv),
             env,
             (flat, mask_or, dither),
             lanes,
@@ -294,11 +297,12 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
 {
     /// Eight pixels with attribute `i` of pixel `k` in lane `k` and dither offsets `dither`:
     /// their values and their texels (0 past the first `n`, which are not fetched).
-    /// The reads of a span whose texels step slowly tracked through `reads` when `SLOW`.
+    /// The reads of a span whose texels step slowly tracked through `reads` when `SLOW`, the
+    /// read one pixel before each from U and V less `back`, their steps per pixel.
     #[inline(always)]
     fn shade(
         vram: &[u16; VRAM_LEN],
-        (cache, reads): (&mut TextureCache, &mut SlowReads),
+        (cache, reads, back): (&mut TextureCache, &mut SlowReads, (u32x8, u32x8)),
         env: &PixelEnv,
         (flat, mask_or, dither): ([i16x8; 3], i16x8, i16x8),
         lanes: &[u32x8; 5],
@@ -315,19 +319,23 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
             // `u / 2` (8-bit) or `u` (15-bit), the texel at bit `(u % 4) * 4` or
             // `(u % 2) * 8` of it (docs/hardware/gpu.md §7).
             let s = &env.sampler;
-            let (u, v) = (lanes[3] >> 24, lanes[4] >> 24);
-            let base = u32x8::splat((s.page_y * crate::VRAM_WIDTH + s.page_x) as u32) + (v << 10);
-            let (address, shift): (u32x8, u32x8) = match TEX {
-                1 => (base + (u >> 2), (u & u32x8::splat(3)) << 2),
-                2 => (base + (u >> 1), (u & u32x8::splat(1)) << 3),
-                _ => (base + u, u32x8::ZERO),
+            let page = u32x8::splat((s.page_y * crate::VRAM_WIDTH + s.page_x) as u32);
+            let u = lanes[3] >> 24;
+            let address = halfword_lanes::<TEX>(page, (u, lanes[4] >> 24));
+            let shift = match TEX {
+                1 => (u & u32x8::splat(3)) << 2,
+                2 => (u & u32x8::splat(1)) << 3,
+                _ => u32x8::ZERO,
             };
             // With the tags tracked, the reads' entries and tags are worked out in the lanes
             // too (docs/hardware/gpu.md §10).
             let tags = CACHE == mode::TAGS;
             if tags {
                 if SLOW {
-                    cache.track_slow_lanes::<TEX>(address, n, reads);
+                    // The reads one pixel back: U and V less one step.
+                    let back = ((lanes[3] - back.0) >> 24, (lanes[4] - back.1) >> 24);
+                    let before = halfword_lanes::<TEX>(page, back);
+                    cache.track_slow_lanes::<TEX>(address, before, n, reads);
                 } else {
                     cache.track_lanes::<TEX>(address, n);
                 }
@@ -370,6 +378,19 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
     }
 }
 
+/// The VRAM index of the halfword holding texel `(u, v)` of lane `k`, in a page at index `page`
+/// that lies inside VRAM under the identity window ([`plain_page`]): `page + v * 1024 + u / 4`
+/// (4-bit, `TEX` 1), `u / 2` (8-bit) or `u` (15-bit) (docs/hardware/gpu.md §7).
+#[inline(always)]
+pub(super) fn halfword_lanes<const TEX: u8>(page: u32x8, (u, v): (u32x8, u32x8)) -> u32x8 {
+    let base = page + (v << 10u32);
+    match TEX {
+        1 => base + (u >> 2u32),
+        2 => base + (u >> 1u32),
+        _ => base + u,
+    }
+}
+
 /// The texel reads of up to eight consecutive pixels of a span over a page of kind `TEX` (1 =
 /// 4-bit, 3 = 15-bit) that lies inside VRAM under the identity window ([`plain_page`], its
 /// index `page`): the halfwords' addresses `page + v * 1024 + u / 4` (4-bit) or `+ u`
@@ -394,11 +415,11 @@ impl PlainReads {
             (u32x8::splat(u) + steps.0) >> 24u32,
             (u32x8::splat(v) + steps.1) >> 24u32,
         );
-        let base = u32x8::splat(page as u32) + (v << 10u32);
-        let (address, shift) = if TEX == 1 {
-            (base + (u >> 2u32), (u & u32x8::splat(3)) << 2u32)
+        let address = halfword_lanes::<TEX>(u32x8::splat(page as u32), (u, v));
+        let shift = if TEX == 1 {
+            (u & u32x8::splat(3)) << 2u32
         } else {
-            (base + u, u32x8::ZERO)
+            u32x8::ZERO
         };
         Self {
             lanes: address,

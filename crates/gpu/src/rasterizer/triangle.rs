@@ -1215,8 +1215,9 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
         let (tables, mask) = ((cells, lut), (mask_or, blend));
         if slow {
             let mut reads = SlowReads::new();
+            let mut before = BeforeReads::new(page, (u, v), (du, dv));
             clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
-                cache.track_slow_lanes::<1>(a, n, &mut reads);
+                cache.track_slow_lanes::<1>(a, before.next::<1>(), n, &mut reads);
             });
         } else {
             clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
@@ -1308,6 +1309,40 @@ fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
     }
 }
 
+/// The texel reads one pixel before those of the groups of a span over a plain page (see
+/// [`span::PlainReads`]) whose texels step slowly, for [`TextureCache::track_slow_lanes`]:
+/// U and V stepped back by one pixel, so that they do not wait on the groups tracked before.
+struct BeforeReads {
+    page: usize,
+    uv: (u32, u32),
+    group: (u32, u32),
+    steps: (wide::u32x8, wide::u32x8),
+}
+
+impl BeforeReads {
+    /// For a span whose first pixel has U and V `uv`, stepping by `duv` per pixel (8.24).
+    #[inline(always)]
+    fn new(page: usize, (u, v): (u32, u32), (du, dv): (u32, u32)) -> Self {
+        Self {
+            page,
+            uv: (u.wrapping_sub(du), v.wrapping_sub(dv)),
+            group: (du.wrapping_mul(LANES as u32), dv.wrapping_mul(LANES as u32)),
+            steps: span::PlainReads::steps((du, dv)),
+        }
+    }
+
+    /// The addresses read one pixel before each pixel of the next group of eight.
+    #[inline(always)]
+    fn next<const TEX: u8>(&mut self) -> wide::u32x8 {
+        let r = span::PlainReads::new::<TEX>(self.page, self.uv, &self.steps);
+        self.uv = (
+            self.uv.0.wrapping_add(self.group.0),
+            self.uv.1.wrapping_add(self.group.1),
+        );
+        r.lanes
+    }
+}
+
 /// A span of [`clut4_groups`] or [`raw15_groups`]: its row offset and columns, U and V at its
 /// first pixel and their steps per pixel (8.24), and the page's VRAM index.
 type SlowSpan = ((usize, i32, i32), (u32, u32), (u32, u32), usize);
@@ -1348,8 +1383,9 @@ fn raw15_pixels<const BLEND: bool, const MASK_CHECK: bool, const CACHE: u8>(
         let span = ((row, x_start, x_end), (u, v), (du, dv), page);
         if slow {
             let mut reads = SlowReads::new();
+            let mut before = BeforeReads::new(page, (u, v), (du, dv));
             raw15_groups::<BLEND, MASK_CHECK>(vram, span, (mask_or, blend), move |a, n| {
-                cache.track_slow_lanes::<3>(a, n, &mut reads);
+                cache.track_slow_lanes::<3>(a, before.next::<3>(), n, &mut reads);
             });
         } else {
             // The whole groups pass LANES and the last group fewer, so each call names its
