@@ -153,9 +153,33 @@ fn frames(c: &mut Criterion) {
 
 /// The default scene's frames with the GPU's texture cache on (as on the console) and off,
 /// side by side: what the cache's tag tracking costs on textures drawn near their size,
-/// whose reads step slowly (docs/gpu.md, "Texture cache").
+/// whose reads step slowly (docs/gpu.md, "Texture cache"). `gpu_only` times the GPU alone,
+/// fed the GP0 packets of the scene's first 24 frames (traced once) through
+/// `Gpu::gp0_words`, from the state the renderer's GPU starts in.
 fn texture_cache(c: &mut Criterion) {
     let mut group = c.benchmark_group("texture_cache");
+    let mut r = Renderer::new(Scene::default_scene(), PipelineOptions::default()).unwrap();
+    let start = r.gpu().clone();
+    let frames: Vec<Vec<Vec<u32>>> = (0..24)
+        .map(|f| {
+            let (_, trace) = r.render_frame_traced(f).unwrap();
+            trace.packets.into_iter().map(|p| p.words).collect()
+        })
+        .collect();
+    for on in [true, false] {
+        let mut gpu = start.clone();
+        gpu.set_texture_cache(on);
+        let name = if on { "gpu_only/on" } else { "gpu_only/off" };
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                for frame in &frames {
+                    for packet in frame {
+                        gpu.gp0_words(black_box(packet));
+                    }
+                }
+            })
+        });
+    }
     for on in [true, false] {
         let options = PipelineOptions {
             texture_cache: on,

@@ -21,6 +21,9 @@ use wide::{i16x8, i32x8, u16x8, u32x8};
 /// Pixels per group.
 const LANES: usize = 8;
 
+/// Each lane's index.
+pub(super) const LANE_INDEX: u32x8 = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
+
 /// The dither offsets of eight consecutive pixels starting at a pixel with `x & 3 == c` on a
 /// line with `y & 3 == r`, indexed `[r][c]` (docs/hardware/gpu.md §6).
 static DITHER_LANES: [[[i16; LANES]; 4]; 4] = dither_lanes();

@@ -1216,13 +1216,25 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
         if slow {
             let mut reads = SlowReads::new();
             let mut before = BeforeReads::new(page, (u, v), (du, dv));
-            clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
-                cache.track_slow_lanes::<1>(a, before.next::<1>(), n, &mut reads);
-            });
+            clut4_groups::<BLEND, MASK_CHECK, CELLS, true>(
+                vram,
+                span,
+                tables,
+                mask,
+                move |a, n| {
+                    cache.track_slow_lanes::<1>(a, before.next::<1>(), n, &mut reads);
+                },
+            );
         } else {
-            clut4_groups::<BLEND, MASK_CHECK, CELLS>(vram, span, tables, mask, move |a, n| {
-                cache.track_lanes::<1>(a, n);
-            });
+            clut4_groups::<BLEND, MASK_CHECK, CELLS, false>(
+                vram,
+                span,
+                tables,
+                mask,
+                move |a, n| {
+                    cache.track_lanes::<1>(a, n);
+                },
+            );
         }
         return;
     }
@@ -1253,9 +1265,10 @@ fn clut4_pixels<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, co
 /// (docs/hardware/gpu.md §6); a group that would run past VRAM's end goes pixel by pixel.
 /// The group's reads come before its writes, which pixel by pixel they do not: the two agree
 /// because with the tags tracked and no copies kept the page lies clear of the drawing area
-/// (`TextureCache::prepare`).
+/// (`TextureCache::prepare`). `NEAR`: the texels step slowly (`steps_slowly`), so the last
+/// group reads all eight lanes' texels and keeps the span's by a lane mask.
 #[inline(always)]
-fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
+fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool, const NEAR: bool>(
     vram: &mut [u16; VRAM_LEN],
     ((row, x_start, x_end), (mut u, mut v), (du, dv), page): SlowSpan,
     (cells, lut): (&[[u32; 16]; 4], &[u32; 16]),
@@ -1282,8 +1295,14 @@ fn clut4_groups<const BLEND: bool, const MASK_CHECK: bool, const CELLS: bool>(
                 lut[texel]
             }
         };
-        // The span's entries, lanes past it left at 0 (transparent) and their texels unread.
-        let entries: [u32; LANES] = if n == LANES {
+        // The span's entries, lanes past it left at 0 (transparent). Texels that step slowly
+        // (`NEAR`) lie close together, so all eight are read and those past the span dropped
+        // with no test a lane; others are left unread.
+        let entries: [u32; LANES] = if NEAR {
+            let all = wide::u32x8::new(core::array::from_fn(entry));
+            let inside = wide::u32x8::splat(n as u32).simd_gt(span::LANE_INDEX);
+            (all & inside).to_array()
+        } else if n == LANES {
             core::array::from_fn(entry)
         } else {
             core::array::from_fn(|k| if k < n { entry(k) } else { 0 })
