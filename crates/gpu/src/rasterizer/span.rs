@@ -336,8 +336,8 @@ impl<const TEX: u8, const GOURAUD: bool, const PLAIN: bool, const CACHE: u8, con
             if tags {
                 if SLOW {
                     // The reads one pixel back: U and V less one step.
-                    let back = ((lanes[3] - back.0) >> 24, (lanes[4] - back.1) >> 24);
-                    let before = halfword_lanes::<TEX>(page, back);
+                    let uv_back = ((lanes[3] - back.0) >> 24, (lanes[4] - back.1) >> 24);
+                    let before = halfword_lanes::<TEX>(page, uv_back);
                     cache.track_slow_lanes::<TEX>(address, before, n, reads);
                 } else {
                     cache.track_lanes::<TEX>(address, n);
@@ -434,8 +434,7 @@ impl PlainReads {
     /// The lanes' offsets from the per-pixel steps `(du, dv)`.
     #[inline(always)]
     pub(super) fn steps((du, dv): (u32, u32)) -> (u32x8, u32x8) {
-        let k = u32x8::new([0, 1, 2, 3, 4, 5, 6, 7]);
-        (k * u32x8::splat(du), k * u32x8::splat(dv))
+        (LANE_INDEX * u32x8::splat(du), LANE_INDEX * u32x8::splat(dv))
     }
 }
 
